@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian (bookworm) packages adb builds against. Called by the Makefile when a
+# dependency is missing; safe to run again. Needs root or sudo (a fresh CI machine is root).
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev            # core
+  libbullet-dev            # Bullet 3.24, single and double precision (bullet-float64.pc)
+  libassimp-dev            # mesh files
+  libgtest-dev libgmock-dev googletest
+  libbenchmark-dev
+  libfcl-dev               # peer in the study, oracle in tests
+  nlohmann-json3-dev
+  python3-matplotlib       # plots of the study
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: everything is installed"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,108 @@
+// Collision queries between two posed ADB-trees: the paper's probability-guided traversal
+// (Fig. 3) with a quality target (p_min, k_min), a wall-clock and a work budget, and an exact
+// mode that descends to triangle pairs.
+//
+// A query is a const function of two built trees: any number of threads may query the same
+// trees at once, each with its own QueryScratch. After the scratch has grown to a query's
+// size, repeating queries of that size allocates nothing.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "adb/core/geometry.h"
+#include "adb/core/tree.h"
+
+namespace adb {
+
+enum class QueryMode {
+  Adb,    ///< the paper's traversal: stop at k_min pairs with p > p_min, prune p = 0
+  Exact,  ///< every overlapping pair down to triangle pairs; confidence 1 when it completes
+};
+
+/// Why a query stopped. Nothing is cut silently: a budget stop says so.
+enum class StopReason {
+  Completed,       ///< the traversal ran out of pairs: the answer is final under the mode
+  QualityReached,  ///< ADB: k_min collision pairs found (paper Fig. 3)
+  ExactHit,        ///< a triangle pair intersects (with stopAtFirstHit): certain
+  TimeBudget,      ///< the wall-clock budget ran out
+  WorkBudget,      ///< the node-pair budget ran out
+};
+
+const char* toString(StopReason r);
+
+struct QuerySettings {
+  QueryMode mode = QueryMode::Adb;
+  /// A node pair with probability above pMin is a collision pair (paper: 0.5, 0.9, 0.99).
+  double pMin = 0.99;
+  /// Report "collision" once kMin collision pairs were found (paper: 1, 5, 10).
+  int kMin = 10;
+  /// Wall-clock budget in microseconds; infinity for none. 0 is valid: the roots only.
+  double budgetMicros = std::numeric_limits<double>::infinity();
+  /// Node pairs that may be evaluated (box test + probability); the reproducible budget.
+  std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
+  /// Exact mode (and leaf pairs in ADB mode): stop at the first intersecting triangle pair.
+  /// Off to collect every intersecting pair as witnesses (contact generation).
+  bool stopAtFirstHit = true;
+  /// Witnesses kept at most; more are counted in QueryResult::witnessesDropped.
+  std::uint32_t maxWitnesses = 64;
+};
+
+/// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
+/// probability, or a pair of triangles that really intersect.
+struct Witness {
+  std::uint32_t nodeA = 0, nodeB = 0;       // node indices in tree A and tree B
+  std::uint32_t triangleA = kNoTriangle;    // tree-order triangle indices when exact
+  std::uint32_t triangleB = kNoTriangle;
+  float probability = 0.0f;                 // 1 for exact triangle pairs
+  static constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
+  bool isExact() const { return triangleA != kNoTriangle; }
+};
+
+struct QueryResult {
+  bool collides = false;
+  /// Estimated probability that `collides` is right, in [0, 1]. See docs/probability-model.md:
+  /// for "collision", 1 - prod(1 - p) over the accepted collision pairs (1 after an exact hit);
+  /// for "no collision", 1 - min(1, sum of Pr[X >= 1] over the pairs still queued), with
+  /// pruned pairs counting 0 as the model says. Both only grow as a query runs longer.
+  double confidence = 0.0;
+  StopReason stop = StopReason::Completed;
+  std::uint64_t nodePairs = 0;       ///< node pairs evaluated (box test, probability)
+  std::uint64_t triangleTests = 0;   ///< triangle-triangle tests run
+  std::uint32_t collisionPairs = 0;  ///< pairs with p > pMin (the paper's k)
+  std::uint32_t witnessCount = 0;    ///< witnesses in QueryScratch::witnesses()
+  std::uint32_t witnessesDropped = 0;
+  double seconds = 0.0;              ///< wall clock of the query
+};
+
+/// Reusable working memory of queries: one per thread.
+class QueryScratch {
+ public:
+  /// The witnesses of the last query that used this scratch.
+  const std::vector<Witness>& witnesses() const { return m_witnesses; }
+  /// Bytes currently reserved (grows to the largest query seen, never shrinks).
+  std::size_t capacityBytes() const;
+
+ private:
+  friend struct QueryScratchAccess;
+  struct Entry {
+    float p;                 // Eq. 3 lower bound: the priority
+    float upper;             // Pr[X >= 1]: the pair's share of the "no collision" doubt
+    std::uint32_t a, b;      // node indices
+    std::uint16_t depthA, depthB;
+  };
+  std::vector<Entry> m_heap;
+  std::vector<Witness> m_witnesses;
+};
+
+/// Tests tree `a` at `poseA` against tree `b` at `poseB` (poses map each mesh's own
+/// coordinates to the world). Throws SettingsError for invalid settings (pMin outside [0, 1],
+/// kMin < 1, NaN or negative budget); never throws for a valid call.
+QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
+                    const QuerySettings& settings, QueryScratch& scratch);
+
+/// Throws SettingsError naming the first invalid field of `settings`.
+void validate(const QuerySettings& settings);
+
+}  // namespace adb

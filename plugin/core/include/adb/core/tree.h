@@ -1,0 +1,125 @@
+// AdbTree: the ADB-tree of Klein & Zachmann — a binary AABB tree whose nodes also store the
+// number of "possible collision cells" (pc) of their polygons, plus per-node surface
+// statistics (area, mean normal, centroid) for plausible contacts.
+//
+// Built once from a validated TriangleMesh, in coordinates local to the mesh (relative to its
+// bounding-box centre, so a mesh 1e5 units from the origin keeps its precision). Immutable
+// after construction: any number of threads may query one tree at once.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "adb/core/geometry.h"
+#include "adb/core/mesh.h"
+
+namespace adb {
+
+/// Thrown for invalid build or query settings; the message names the setting and the range.
+class SettingsError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// How pc (possible collision cells per node) is counted (paper §3.4).
+enum class CellCounting {
+  Approximate,  ///< Fig. 5: propagate areas up the tree. O(m log m). The default.
+  Exact,        ///< clip every triangle of a node into the node's grid. O(n log n), slower.
+};
+
+struct BuildSettings {
+  /// Cells per axis of each node's grid: G^3 cells (the paper found 8^3 = 512 best). 1..32.
+  int gridResolution = 8;
+  /// Triangles per leaf at most, 1..15 (packed in 4 bits of the node).
+  int maxLeafTriangles = 4;
+  CellCounting counting = CellCounting::Approximate;
+  /// [open] A cell is a possible collision cell when its clipped area reaches this fraction
+  /// of MaxArea(cell) (the largest polygon fitting in the cell; paper: fraction 1). A smooth
+  /// surface crossing a cube cell covers at most MaxArea, so with the paper's value almost no
+  /// cell of a smooth mesh counts and every pair gets probability 0; docs/probability-model.md
+  /// shows the measurements behind the default. In (0, 1].
+  double areaThreshold = 0.35;
+};
+
+/// One tree node: 32 bytes, the hot data of the traversal, two per cache line.
+struct Node {
+  float lo[3];            // 12 bytes: box min, local coordinates, rounded outward
+  float hi[3];            // 12 bytes: box max, rounded outward
+  float pc;               //  4 bytes: possible collision cells (fractional when approximate)
+  std::uint32_t packed;   //  4 bytes: bits 4..31 first child (inner; the second child is
+                          //           first + 1) or first triangle (leaf); bits 0..3 the
+                          //           leaf's triangle count (0 marks an inner node)
+
+  bool isLeaf() const { return (packed & 0xFu) != 0; }
+  std::uint32_t firstChild() const { return packed >> 4; }
+  std::uint32_t firstTriangle() const { return packed >> 4; }
+  std::uint32_t triangleCount() const { return packed & 0xFu; }
+  Vec3 boxLo() const { return Vec3(lo[0], lo[1], lo[2]); }
+  Vec3 boxHi() const { return Vec3(hi[0], hi[1], hi[2]); }
+};
+static_assert(sizeof(Node) == 32, "Node is laid out for two per cache line");
+
+/// Per-node surface statistics, kept apart from Node because only contact generation reads
+/// them. 32 bytes.
+struct NodeSurface {
+  float area;          // total triangle area below the node
+  float normal[3];     // area-weighted mean unit normal (zero when the normals cancel)
+  float centroid[3];   // area-weighted centroid, local coordinates
+  float coherence;     // |sum a_i n_i| / sum a_i in [0, 1]: 1 for a flat patch
+};
+static_assert(sizeof(NodeSurface) == 32, "NodeSurface layout");
+
+/// Per-node cell statistics read by the pair probability, 8 bytes. The grid of a node holds
+/// about G^3 near-cubic cells (see docs/probability-model.md).
+struct NodeCells {
+  float side;     // nominal side h of the node's cells, local units
+  float density;  // possible collision cells / cells of the node's grid, in [0, 1]
+};
+static_assert(sizeof(NodeCells) == 8, "NodeCells layout");
+
+class AdbTree {
+ public:
+  /// Builds the hierarchy and its cell statistics. Throws SettingsError on bad settings.
+  explicit AdbTree(const TriangleMesh& mesh, const BuildSettings& settings = {});
+
+  const std::vector<Node>& nodes() const { return m_nodes; }
+  const std::vector<NodeSurface>& surfaces() const { return m_surfaces; }
+  const std::vector<NodeCells>& cells() const { return m_cells; }
+  const Node& root() const { return m_nodes[0]; }
+
+  /// Vertices in local coordinates: mesh coordinates minus origin().
+  const std::vector<Vec3>& localVertices() const { return m_vertices; }
+  /// Triangles in tree order (a leaf owns a contiguous range).
+  const std::vector<Triangle>& triangles() const { return m_triangles; }
+  /// The mesh's index of the triangle at tree position i.
+  std::uint32_t meshTriangle(std::uint32_t i) const { return m_meshTriangle[i]; }
+  /// Mesh coordinates of the local origin (the centre of the mesh's bounding box).
+  const Vec3& origin() const { return m_origin; }
+
+  const BuildSettings& settings() const { return m_settings; }
+  int maxDepth() const { return m_maxDepth; }
+  std::size_t triangleCount() const { return m_triangles.size(); }
+  /// Bytes held by the tree's arrays (nodes, surfaces, triangles, vertices).
+  std::size_t memoryBytes() const;
+  /// Wall-clock seconds spent building the hierarchy and counting cells.
+  double hierarchySeconds() const { return m_hierarchySeconds; }
+  double countingSeconds() const { return m_countingSeconds; }
+
+ private:
+  friend struct TreeBuilderAccess;
+  BuildSettings m_settings;
+  std::vector<Node> m_nodes;
+  std::vector<NodeSurface> m_surfaces;
+  std::vector<NodeCells> m_cells;
+  std::vector<Vec3> m_vertices;
+  std::vector<Triangle> m_triangles;
+  std::vector<std::uint32_t> m_meshTriangle;
+  Vec3 m_origin = Vec3::Zero();
+  int m_maxDepth = 0;
+  double m_hierarchySeconds = 0.0;
+  double m_countingSeconds = 0.0;
+};
+
+}  // namespace adb

@@ -1,0 +1,34 @@
+// Random poses of the benchmark procedure.
+#include "adb/core/benchmark_poses.h"
+
+#include <cmath>
+
+namespace adb {
+
+double benchmarkUnit(const Aabb& meshBounds) {
+  const double half = 0.5 * meshBounds.extent().maxCoeff();
+  return half > 0.0 && std::isfinite(half) ? half : 1.0;
+}
+
+Eigen::Quaterniond randomRotation(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double u1 = uni(rng), u2 = uni(rng), u3 = uni(rng);
+  const double twoPi = 2.0 * M_PI;
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  return Eigen::Quaterniond(b * std::cos(twoPi * u3), a * std::sin(twoPi * u2),
+                            a * std::cos(twoPi * u2), b * std::sin(twoPi * u3));
+}
+
+PosePair benchmarkPoses(const Aabb& meshBounds, double distance, std::mt19937_64& rng) {
+  const Vec3 c = meshBounds.center();
+  const double unit = benchmarkUnit(meshBounds);
+  PosePair p;
+  const Mat3 ra = randomRotation(rng).toRotationMatrix();
+  const Mat3 rb = randomRotation(rng).toRotationMatrix();
+  // Rotate about the bounding-box centre, then place the centres on the x axis.
+  p.a = Pose{ra, -(ra * c)};
+  p.b = Pose{rb, -(rb * c) + Vec3(distance * unit, 0.0, 0.0)};
+  return p;
+}
+
+}  // namespace adb

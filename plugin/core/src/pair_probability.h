@@ -1,0 +1,46 @@
+// Internal: one node pair of two posed trees — the box overlap test and the parameters
+// s, s_A, s_B of the probability model (paper §3.5; the [open] choices are documented at
+// estimatePair and in docs/probability-model.md).
+#pragma once
+
+#include "adb/core/probability.h"
+#include "adb/core/tree.h"
+
+namespace adb::detail {
+
+/// The relative placement of tree B in tree A's local frame, and the reverse, fixed for one
+/// query. x_A = rBA * x_B + tBA.
+struct RelativeFrame {
+  Mat3 rBA, absBA;  // rotation B -> A and its element-wise absolute value
+  Vec3 tBA;
+  Mat3 rAB, absAB;  // rotation A -> B
+  Vec3 tAB;
+  double slack = 0.0;  // absolute overlap tolerance: rounding of the transform, never less
+
+  static RelativeFrame between(const AdbTree& a, const Pose& poseA, const AdbTree& b,
+                               const Pose& poseB);
+};
+
+/// Per-tree constants the estimate reads.
+struct TreeConstants {
+  const AdbTree* tree;
+  int maxDepth;
+};
+
+struct PairEstimate {
+  bool overlap = false;
+  double lower = 0.0;  // Eq. 3: the priority and the acceptance test
+  double upper = 0.0;  // Pr[X >= 1]
+  int s = 0, sA = 0, sB = 0;
+};
+
+/// True when the boxes of a (tree A) and b (tree B) overlap on A's and B's face axes,
+/// touching included (within frame.slack).
+bool boxesOverlap(const Node& a, const Node& b, const RelativeFrame& frame);
+
+/// Overlap test plus, when they overlap, the probability of the pair at the given depths.
+PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t a, int depthA,
+                          const TreeConstants& tb, std::uint32_t b, int depthB,
+                          const RelativeFrame& frame);
+
+}  // namespace adb::detail

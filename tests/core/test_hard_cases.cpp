@@ -1,0 +1,280 @@
+// Hard cases, one named test each: degenerate triangles, flat meshes, single triangles,
+// touching and coplanar faces, far from the origin, tiny and huge scales, zero and huge
+// budgets, bad query settings. Exact mode must match the brute-force oracle; ADB mode must stay
+// finite, in range and sensible.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "adb/core/mesh_generators.h"
+#include "adb/core/tree.h"
+#include "test_support.h"
+
+namespace adb {
+namespace {
+
+void expectSane(const QueryResult& r) {
+  EXPECT_TRUE(r.confidence >= 0.0 && r.confidence <= 1.0) << r.confidence;
+  EXPECT_TRUE(std::isfinite(r.seconds));
+}
+
+Pose at(const Vec3& t) { return Pose{Mat3::Identity(), t}; }
+
+// Exact mode vs the oracle over random benchmark poses; ADB results must be sane.
+void checkAgainstOracle(const TriangleMesh& a, const TriangleMesh& b, int poses,
+                        double maxDistance = 2.0) {
+  AdbTree ta(a), tb(b);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  Aabb both = a.bounds();
+  both.grow(b.bounds());
+  for (int i = 0; i < poses; ++i) {
+    const double d = maxDistance * (i + 0.5) / poses;
+    const PosePair p = benchmarkPoses(both, d, rng);
+    const bool truth = test::bruteForceCollide(a, p.a, b, p.b);
+    const QueryResult e = collide(ta, p.a, tb, p.b, test::exactSettings(), scratch);
+    ASSERT_EQ(e.collides, truth) << "pose " << i << " distance " << d;
+    expectSane(collide(ta, p.a, tb, p.b, test::adbSettings(), scratch));
+  }
+}
+
+TEST(HardCaseDegenerate, DegenerateTrianglesAreHandledEverywhere) {
+  // A torus with extra degenerate triangles: repeated indices, collinear vertices, and
+  // distinct vertices at one position.
+  const TriangleMesh torus = gen::makeTorus(1.0, 0.3, 16, 8);
+  std::vector<Vec3> v = torus.vertices();
+  std::vector<Triangle> t = torus.triangles();
+  const auto n = static_cast<std::uint32_t>(v.size());
+  v.push_back(v[0]);                               // a duplicate position
+  v.push_back(0.5 * (v[0] + v[1]));                // the midpoint of an edge: collinear
+  for (std::uint32_t i = 0; i + 2 < n; i += 7) t.push_back({i, i, i + 1});
+  t.push_back({0, n, 1});
+  t.push_back({0, 1, n + 1});
+  t.push_back({n, n, n});
+  const TriangleMesh mesh(v, t, "degenerate torus");
+  ASSERT_GT(mesh.report().degenerateTriangles, 10u);
+  const AdbTree tree(mesh);
+  for (const Node& node : tree.nodes()) ASSERT_TRUE(std::isfinite(node.pc) && node.pc >= 0.0f);
+  checkAgainstOracle(mesh, mesh, 40);
+}
+
+TEST(HardCaseDegenerate, MeshOfOnlyDegenerateTriangles) {
+  // Zero total area: every count is zero, queries still answer exactly.
+  const TriangleMesh segments({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}},
+                              {{0, 1, 2}, {0, 0, 3}, {3, 3, 3}}, "segments");
+  const AdbTree tree(segments);
+  for (const Node& node : tree.nodes()) EXPECT_EQ(node.pc, 0.0f);
+  const TriangleMesh tri({{0.5, -1, -1}, {0.5, 1, -1}, {0.5, 0, 1}}, {{0, 1, 2}});
+  const AdbTree crossing(tri);
+  QueryScratch scratch;
+  // The x-axis segment pierces the triangle in the plane x = 0.5.
+  EXPECT_TRUE(collide(tree, Pose{}, crossing, Pose{}, test::exactSettings(), scratch).collides);
+  EXPECT_FALSE(
+      collide(tree, Pose{}, crossing, at(Vec3(0, 0, 5)), test::exactSettings(), scratch).collides);
+}
+
+TEST(HardCaseFlat, FlatMeshesGiveFiniteCountsAndExactAnswers) {
+  const TriangleMesh flat = gen::makeFlatGrid(2.0, 2.0, 16, 16);
+  for (CellCounting counting : {CellCounting::Approximate, CellCounting::Exact}) {
+    BuildSettings s;
+    s.counting = counting;
+    const AdbTree tree(flat, s);
+    // A fully covered flat square: one layer of 23 x 23 flat cells (node_geometry.h), all
+    // possible collision cells; the approximate count (area / h^2) lands on the same number.
+    EXPECT_NEAR(tree.root().pc, 529.0f, counting == CellCounting::Exact ? 0.0f : 529.0f * 0.05f);
+    EXPECT_NEAR(tree.cells()[0].density, 1.0f, 0.05f);
+    for (const Node& node : tree.nodes()) ASSERT_TRUE(std::isfinite(node.pc));
+  }
+  checkAgainstOracle(flat, flat, 40);
+  checkAgainstOracle(flat, gen::makeTorus(0.8, 0.25, 16, 8), 40);
+}
+
+TEST(HardCaseFlat, CoplanarParallelAndCrossingSheets) {
+  const TriangleMesh flat = gen::makeFlatGrid(2.0, 2.0, 8, 8);
+  const AdbTree tree(flat);
+  QueryScratch scratch;
+  const auto exact = [&](const Pose& pb) {
+    return collide(tree, Pose{}, tree, pb, test::exactSettings(), scratch).collides;
+  };
+  EXPECT_TRUE(exact(at(Vec3(0.5, 0.25, 0))));   // coplanar, overlapping
+  EXPECT_TRUE(exact(at(Vec3(2.0, 0, 0))));      // coplanar, sharing an edge
+  EXPECT_FALSE(exact(at(Vec3(2.0 + 1e-9, 0, 0))));
+  EXPECT_FALSE(exact(at(Vec3(0, 0, 1e-9))));    // parallel, a hair apart
+  const Pose upright{Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()};
+  EXPECT_TRUE(exact(upright));                  // crossing at right angles
+  // ADB must find the crossing sheets too (the padding of flat nodes, node_geometry.h).
+  const QueryResult r = collide(tree, Pose{}, tree, upright, test::adbSettings(), scratch);
+  expectSane(r);
+  EXPECT_TRUE(r.collides);
+}
+
+TEST(HardCaseSingleTriangle, SingleTriangleMeshes) {
+  const TriangleMesh a({{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}, {{0, 1, 2}});
+  const TriangleMesh b({{0, -0.5, -1}, {0, -0.5, 1}, {0, 0.5, 0}}, {{0, 1, 2}});
+  const AdbTree ta(a), tb(b);
+  QueryScratch scratch;
+  for (const QuerySettings& s : {test::exactSettings(), test::adbSettings()}) {
+    const QueryResult hit = collide(ta, Pose{}, tb, Pose{}, s, scratch);
+    EXPECT_TRUE(hit.collides);
+    EXPECT_EQ(hit.confidence, 1.0);  // two leaves: decided by the exact test in both modes
+    const QueryResult miss = collide(ta, Pose{}, tb, at(Vec3(0, 0, 2.5)), s, scratch);
+    EXPECT_FALSE(miss.collides);
+    EXPECT_EQ(miss.confidence, 1.0);
+  }
+}
+
+TEST(HardCaseTouching, BoxesFaceToFace) {
+  const TriangleMesh box = gen::makeBox(Vec3(0.5, 0.5, 0.5), 2);
+  const AdbTree tree(box);
+  QueryScratch scratch;
+  const auto exact = [&](const Pose& pb) {
+    return collide(tree, Pose{}, tree, pb, test::exactSettings(), scratch).collides;
+  };
+  // What counts as a collision: closed triangles sharing a point (triangle_test.h). Faces
+  // that touch collide; a gap of 1e-9 (far above the 1e-12 relative tolerance) does not.
+  EXPECT_TRUE(exact(at(Vec3(1.0, 0, 0))));             // coplanar faces, fully overlapping
+  EXPECT_TRUE(exact(at(Vec3(1.0, 0.5, 0.25))));        // coplanar faces, partly overlapping
+  EXPECT_TRUE(exact(at(Vec3(1.0, 1.0, 1.0))));         // corner on corner
+  EXPECT_FALSE(exact(at(Vec3(1.0 + 1e-9, 0, 0))));
+  EXPECT_FALSE(exact(at(Vec3(1.0, 1.0 + 1e-9, 1.0))));
+  // Edge on face: B rotated 45 degrees about z rests an edge on A's top face.
+  const Pose edge{Eigen::AngleAxisd(M_PI / 4, Vec3::UnitX()).toRotationMatrix(),
+                  Vec3(0, 0, 0.5 + 0.5 * std::sqrt(2.0))};
+  EXPECT_TRUE(exact(edge));
+  EXPECT_FALSE(exact(Pose{edge.rotation, edge.translation + Vec3(0, 0, 1e-9)}));
+}
+
+TEST(HardCaseFarFromOrigin, SameAnswersAt1e5) {
+  const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 20, 10);
+  const Vec3 far(1e5, -2e5, 1e5);
+  const TriangleMesh moved = gen::transformed(mesh, Pose{Mat3::Identity(), far});
+  const AdbTree near(mesh), away(moved);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  int adbSame = 0, total = 0;
+  for (double d = 0.3; d <= 2.0; d += 0.1) {
+    for (int i = 0; i < 8; ++i) {
+      const PosePair p = benchmarkPoses(mesh.bounds(), d, rng);
+      // The moved mesh's file coordinates are shifted by `far`: undo it in the pose, then put
+      // the pair 1e5 away from the world origin too.
+      const Pose qa{p.a.rotation, p.a.translation - p.a.rotation * far + far};
+      const Pose qb{p.b.rotation, p.b.translation - p.b.rotation * far + far};
+      const bool truth = test::bruteForceCollide(mesh, p.a, mesh, p.b);
+      EXPECT_EQ(collide(away, qa, away, qb, test::exactSettings(), scratch).collides, truth);
+      const QueryResult rn = collide(near, p.a, near, p.b, test::adbSettings(), scratch);
+      const QueryResult rf = collide(away, qa, away, qb, test::adbSettings(), scratch);
+      adbSame += rn.collides == rf.collides ? 1 : 0;
+      ++total;
+    }
+  }
+  // Local frames make the ADB traversal see the same numbers up to rounding of the shift.
+  EXPECT_GE(adbSame, total - 1);
+}
+
+TEST(HardCaseScale, TinyAndHugeScalesGiveTheSameAnswers) {
+  const TriangleMesh unit = gen::makeTorusKnot(2, 3, 1.0, 0.25, 48, 6);
+  const AdbTree unitTree(unit);
+  QueryScratch scratch;
+  for (double scale : {1e-3, 1e3}) {
+    std::vector<Vec3> v = unit.vertices();
+    for (Vec3& x : v) x *= scale;
+    const TriangleMesh scaled(v, unit.triangles(), "scaled");
+    const AdbTree tree(scaled);
+    std::mt19937_64 rng(test::kSeed), rngScaled(test::kSeed);
+    int adbSame = 0, total = 0;
+    for (double d = 0.3; d <= 2.0; d += 0.1) {
+      for (int i = 0; i < 6; ++i) {
+        const PosePair p = benchmarkPoses(unit.bounds(), d, rng);
+        const PosePair ps = benchmarkPoses(scaled.bounds(), d, rngScaled);
+        const bool truth = test::bruteForceCollide(unit, p.a, unit, p.b);
+        EXPECT_EQ(collide(tree, ps.a, tree, ps.b, test::exactSettings(), scratch).collides,
+                  truth)
+            << "scale " << scale << " d " << d;
+        const QueryResult r1 = collide(unitTree, p.a, unitTree, p.b, test::adbSettings(), scratch);
+        const QueryResult rs = collide(tree, ps.a, tree, ps.b, test::adbSettings(), scratch);
+        expectSane(rs);
+        adbSame += r1.collides == rs.collides ? 1 : 0;
+        ++total;
+      }
+    }
+    // The model is scale-free (volume ratios, depths); only rounding of s may differ.
+    EXPECT_GE(adbSame, total - 2) << "scale " << scale;
+  }
+}
+
+TEST(HardCaseBudget, ZeroBudgetsAreValid) {
+  const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 40, 20);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  const PosePair p = benchmarkPoses(mesh.bounds(), 0.8, rng);
+  QuerySettings s = test::adbSettings();
+  s.budgetMicros = 0.0;
+  const QueryResult timed = collide(tree, p.a, tree, p.b, s, scratch);
+  expectSane(timed);
+  EXPECT_EQ(timed.stop, StopReason::TimeBudget);
+  s = test::adbSettings();
+  s.budgetNodePairs = 0;
+  const QueryResult work = collide(tree, p.a, tree, p.b, s, scratch);
+  expectSane(work);
+  EXPECT_EQ(work.stop, StopReason::WorkBudget);
+  EXPECT_LE(work.nodePairs, 1u);  // the roots' own test
+  // Nothing was explored: the answer cannot claim more than the roots tell.
+  EXPECT_LT(work.confidence, 0.5);
+  // Separated roots need no budget at all.
+  const QueryResult apart =
+      collide(tree, Pose{}, tree, at(Vec3(10, 0, 0)), s, scratch);
+  EXPECT_FALSE(apart.collides);
+  EXPECT_EQ(apart.confidence, 1.0);
+}
+
+TEST(HardCaseBudget, HugeBudgetsEqualNoBudget) {
+  const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 40, 20);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  for (int i = 0; i < 20; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.5 + 0.1 * i, rng);
+    QuerySettings s = test::adbSettings();
+    const QueryResult free = collide(tree, p.a, tree, p.b, s, scratch);
+    s.budgetMicros = 1e12;
+    s.budgetNodePairs = std::numeric_limits<std::uint64_t>::max() - 1;
+    const QueryResult big = collide(tree, p.a, tree, p.b, s, scratch);
+    EXPECT_EQ(free.collides, big.collides);
+    EXPECT_EQ(free.confidence, big.confidence);
+    EXPECT_EQ(free.nodePairs, big.nodePairs);
+  }
+}
+
+TEST(HardCaseBadInput, InvalidQuerySettingsAreRejectedWithTheirName) {
+  const TriangleMesh mesh = gen::makeSphere(1.0, 1);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  const auto message = [&](QuerySettings s) -> std::string {
+    try {
+      collide(tree, Pose{}, tree, Pose{}, s, scratch);
+    } catch (const SettingsError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  QuerySettings s;
+  s.pMin = std::nan("");
+  EXPECT_NE(message(s).find("pMin"), std::string::npos);
+  s = QuerySettings{};
+  s.pMin = 1.5;
+  EXPECT_NE(message(s).find("pMin"), std::string::npos);
+  s = QuerySettings{};
+  s.kMin = 0;
+  EXPECT_NE(message(s).find("kMin"), std::string::npos);
+  s = QuerySettings{};
+  s.budgetMicros = -1.0;
+  EXPECT_NE(message(s).find("budgetMicros"), std::string::npos);
+  s = QuerySettings{};
+  s.budgetMicros = std::nan("");
+  EXPECT_NE(message(s).find("budgetMicros"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace adb

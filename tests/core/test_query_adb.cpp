@@ -1,0 +1,216 @@
+// ADB mode: error rate against the exact answer over the benchmark distances, monotone
+// confidence under growing budgets, witnesses, thread safety, no allocation in steady state.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <thread>
+
+#include "adb/core/mesh_generators.h"
+#include "adb/core/tree.h"
+#include "test_support.h"
+
+// Counts every allocation of this test program, so a test can assert that a stretch of code
+// allocates nothing. Replacing the global operator new is the only way to see allocations
+// made inside the library.
+namespace {
+std::atomic<std::size_t> g_allocations{0};
+}  // namespace
+
+// GCC cannot see that this operator new and the operator delete below are a pair over
+// malloc/free, and warns at every inlined delete.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
+
+namespace adb {
+namespace {
+
+struct ErrorRate {
+  int counted = 0;  // queries whose root boxes overlap (the paper counts only those)
+  int wrong = 0;
+  double percent() const { return counted ? 100.0 * wrong / counted : 0.0; }
+};
+
+// The paper's error measure at p_min 0.99, k_min 10 over distances 0.4..2.0.
+ErrorRate measureErrorRate(const TriangleMesh& mesh, int posesPerDistance,
+                           const QuerySettings& settings) {
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  ErrorRate e;
+  for (int step = 0; step <= 16; ++step) {
+    const double d = 0.4 + 0.1 * step;
+    for (int i = 0; i < posesPerDistance; ++i) {
+      const PosePair p = benchmarkPoses(mesh.bounds(), d, rng);
+      const QueryResult exact = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch);
+      const QueryResult fast = collide(tree, p.a, tree, p.b, settings, scratch);
+      if (exact.nodePairs <= 1 && !exact.collides) continue;  // root boxes apart: not counted
+      ++e.counted;
+      e.wrong += exact.collides != fast.collides ? 1 : 0;
+    }
+  }
+  return e;
+}
+
+// The bound: the paper reports 1.5-2.1 % mean error at these settings on its CAD models; our
+// generated models are measured in docs/core-results.md. The bound is the paper's worst
+// reported mean (3.2 %, distances 1 to 2) plus the sampling error of ~500 queries (2 sigma of
+// a 3 % proportion: 1.5 points).
+constexpr double kMaxErrorPercent = 4.7;
+
+TEST(AdbErrorRate, TorusKnotBelowBound) {
+  const ErrorRate e =
+      measureErrorRate(gen::makeModel("knot", 20000), 30, test::adbSettings(0.99, 10));
+  EXPECT_GT(e.counted, 300);
+  EXPECT_LE(e.percent(), kMaxErrorPercent) << e.wrong << " of " << e.counted;
+}
+
+TEST(AdbErrorRate, PipesBelowBound) {
+  const ErrorRate e =
+      measureErrorRate(gen::makeModel("pipes", 20000), 30, test::adbSettings(0.99, 10));
+  EXPECT_GT(e.counted, 300);
+  EXPECT_LE(e.percent(), kMaxErrorPercent) << e.wrong << " of " << e.counted;
+}
+
+TEST(AdbErrorRate, GearsBelowBound) {
+  const ErrorRate e =
+      measureErrorRate(gen::makeModel("gears", 20000), 30, test::adbSettings(0.99, 10));
+  EXPECT_GT(e.counted, 300);
+  EXPECT_LE(e.percent(), kMaxErrorPercent) << e.wrong << " of " << e.counted;
+}
+
+TEST(AdbErrorRate, LowerQualitySettingsMakeMoreErrorsNotFewer) {
+  // The paper's trend (Fig. 11): p_min 0.5 / k_min 1 errs at least as often as 0.99 / 10,
+  // up to sampling noise.
+  const TriangleMesh mesh = gen::makeModel("knot", 20000);
+  const ErrorRate strict = measureErrorRate(mesh, 20, test::adbSettings(0.99, 10));
+  const ErrorRate loose = measureErrorRate(mesh, 20, test::adbSettings(0.5, 1));
+  EXPECT_GE(loose.percent() + 1.0, strict.percent());
+}
+
+TEST(AdbConfidence, MoreBudgetNeverLowersTheConfidence) {
+  const TriangleMesh mesh = gen::makeModel("knot", 20000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  int checked = 0;
+  for (double d = 0.4; d <= 2.0; d += 0.2) {
+    for (int i = 0; i < 6; ++i) {
+      const PosePair p = benchmarkPoses(mesh.bounds(), d, rng);
+      double previous = 0.0;
+      for (std::uint64_t budget : {0ull, 1ull, 4ull, 8ull, 16ull, 32ull, 64ull, 128ull, 256ull,
+                                   512ull, 1024ull, 4096ull, 1ull << 20}) {
+        QuerySettings s = test::adbSettings();
+        s.budgetNodePairs = budget;
+        const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+        EXPECT_GE(r.confidence, previous) << "d " << d << " pose " << i << " budget " << budget;
+        previous = r.confidence;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 500);
+}
+
+TEST(AdbConfidence, ExactModeWithMoreBudgetNeverLowersTheConfidence) {
+  const TriangleMesh mesh = gen::makeModel("knot", 5000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  for (int i = 0; i < 20; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.08 * i, rng);
+    double previous = 0.0;
+    for (std::uint64_t budget : {0ull, 10ull, 100ull, 1000ull, 1ull << 30}) {
+      QuerySettings s = test::exactSettings();
+      s.budgetNodePairs = budget;
+      const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+      EXPECT_GE(r.confidence, previous);
+      previous = r.confidence;
+    }
+    EXPECT_EQ(previous, 1.0);
+  }
+}
+
+TEST(AdbWitnesses, CollisionAnswersCarryAcceptedPairs) {
+  const TriangleMesh mesh = gen::makeModel("knot", 20000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  int collisions = 0;
+  for (int i = 0; i < 30; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.4, rng);
+    const QueryResult r = collide(tree, p.a, tree, p.b, test::adbSettings(), scratch);
+    if (!r.collides) continue;
+    ++collisions;
+    ASSERT_GE(r.witnessCount, 1u);
+    for (const Witness& w : scratch.witnesses()) {
+      EXPECT_TRUE(w.isExact() || w.probability > 0.99f);
+      EXPECT_LT(w.nodeA, tree.nodes().size());
+      EXPECT_LT(w.nodeB, tree.nodes().size());
+    }
+  }
+  EXPECT_GT(collisions, 20);
+}
+
+TEST(AdbThreads, ConcurrentQueriesOnSharedTreesMatchSequentialOnes) {
+  const TriangleMesh mesh = gen::makeModel("pipes", 10000);
+  const AdbTree tree(mesh);
+  std::mt19937_64 rng(test::kSeed);
+  std::vector<PosePair> poses;
+  for (int i = 0; i < 200; ++i) poses.push_back(benchmarkPoses(mesh.bounds(), 0.4 + 0.008 * i, rng));
+  const auto runAll = [&](std::vector<QueryResult>& out, QueryMode mode) {
+    QueryScratch scratch;
+    QuerySettings s = mode == QueryMode::Exact ? test::exactSettings() : test::adbSettings();
+    for (const PosePair& p : poses) out.push_back(collide(tree, p.a, tree, p.b, s, scratch));
+  };
+  for (QueryMode mode : {QueryMode::Adb, QueryMode::Exact}) {
+    std::vector<QueryResult> sequential;
+    runAll(sequential, mode);
+    std::vector<std::vector<QueryResult>> perThread(4);
+    std::vector<std::thread> threads;
+    for (auto& out : perThread) threads.emplace_back([&, m = mode] { runAll(out, m); });
+    for (auto& t : threads) t.join();
+    for (const auto& out : perThread) {
+      ASSERT_EQ(out.size(), sequential.size());
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        EXPECT_EQ(out[i].collides, sequential[i].collides);
+        EXPECT_EQ(out[i].confidence, sequential[i].confidence);
+        EXPECT_EQ(out[i].nodePairs, sequential[i].nodePairs);
+      }
+    }
+  }
+}
+
+TEST(AdbAllocation, RepeatedQueriesAllocateNothing) {
+  const TriangleMesh mesh = gen::makeModel("knot", 20000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  std::vector<PosePair> poses;
+  for (int i = 0; i < 50; ++i) poses.push_back(benchmarkPoses(mesh.bounds(), 0.3 + 0.04 * i, rng));
+  QuerySettings exactAll = test::exactSettings();
+  exactAll.stopAtFirstHit = false;
+  const QuerySettings modes[] = {test::adbSettings(), test::exactSettings(), exactAll};
+  // Warm-up: the scratch grows to the largest of these queries...
+  for (const QuerySettings& s : modes) {
+    for (const PosePair& p : poses) collide(tree, p.a, tree, p.b, s, scratch);
+  }
+  // ...after which the same queries allocate nothing.
+  const std::size_t before = g_allocations.load();
+  for (const QuerySettings& s : modes) {
+    for (const PosePair& p : poses) collide(tree, p.a, tree, p.b, s, scratch);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0u);
+}
+
+}  // namespace
+}  // namespace adb

@@ -1,0 +1,102 @@
+// Exact mode against the brute-force oracle (all triangle pairs) on random benchmark poses:
+// zero disagreements; plus witness collection and budgets in exact mode.
+#include <gtest/gtest.h>
+
+#include "adb/core/mesh_generators.h"
+#include "adb/core/tree.h"
+#include "test_support.h"
+
+namespace adb {
+namespace {
+
+struct Disagreements {
+  int queries = 0, collisions = 0, wrong = 0;
+};
+
+Disagreements compareWithBruteForce(const TriangleMesh& mesh, int posesPerDistance) {
+  AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  Disagreements d;
+  for (double dist = 0.2; dist <= 2.2; dist += 0.1) {
+    for (int i = 0; i < posesPerDistance; ++i) {
+      const PosePair p = benchmarkPoses(mesh.bounds(), dist, rng);
+      const QueryResult r = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch);
+      const bool truth = test::bruteForceCollide(mesh, p.a, mesh, p.b);
+      ++d.queries;
+      d.collisions += truth ? 1 : 0;
+      if (r.collides != truth) ++d.wrong;
+      EXPECT_EQ(r.confidence, 1.0);
+      EXPECT_TRUE(r.stop == StopReason::Completed || r.stop == StopReason::ExactHit);
+    }
+  }
+  return d;
+}
+
+TEST(ExactMode, AgreesWithBruteForceOnTorus) {
+  const auto d = compareWithBruteForce(gen::makeTorus(1.0, 0.35, 20, 10), 12);
+  EXPECT_EQ(d.wrong, 0);
+  // The poses must exercise both answers, or the comparison proves little.
+  EXPECT_GT(d.collisions, d.queries / 5);
+  EXPECT_LT(d.collisions, d.queries * 4 / 5);
+}
+
+TEST(ExactMode, AgreesWithBruteForceOnGear) {
+  const auto d = compareWithBruteForce(gen::makeGear(12, 1.0, 0.8, 0.3, 0.3, 4), 10);
+  EXPECT_EQ(d.wrong, 0);
+  EXPECT_GT(d.collisions, d.queries / 5);
+}
+
+TEST(ExactMode, AgreesWithBruteForceOnTorusKnot) {
+  const auto d = compareWithBruteForce(gen::makeTorusKnot(2, 3, 1.0, 0.25, 48, 6), 10);
+  EXPECT_EQ(d.wrong, 0);
+  EXPECT_GT(d.collisions, d.queries / 5);
+}
+
+TEST(ExactMode, CollectsEveryIntersectingTrianglePair) {
+  const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 16, 8);
+  AdbTree tree(mesh);
+  QueryScratch scratch;
+  QuerySettings s = test::exactSettings();
+  s.stopAtFirstHit = false;
+  s.maxWitnesses = 100000;
+  std::mt19937_64 rng(test::kSeed);
+  const PosePair p = benchmarkPoses(mesh.bounds(), 0.5, rng);
+  const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+  // Brute-force count of intersecting pairs.
+  std::size_t expected = 0;
+  for (const Triangle& ta : mesh.triangles()) {
+    for (const Triangle& tb : mesh.triangles()) {
+      expected += trianglesIntersect(
+          test::place(p.a, mesh.vertices()[ta[0]]), test::place(p.a, mesh.vertices()[ta[1]]),
+          test::place(p.a, mesh.vertices()[ta[2]]), test::place(p.b, mesh.vertices()[tb[0]]),
+          test::place(p.b, mesh.vertices()[tb[1]]), test::place(p.b, mesh.vertices()[tb[2]]));
+    }
+  }
+  ASSERT_GT(expected, 0u);
+  EXPECT_EQ(r.witnessCount, expected);
+  EXPECT_EQ(r.witnessesDropped, 0u);
+  for (const Witness& w : scratch.witnesses()) EXPECT_TRUE(w.isExact());
+
+  s.maxWitnesses = 3;
+  const QueryResult capped = collide(tree, p.a, tree, p.b, s, scratch);
+  EXPECT_EQ(capped.witnessCount, 3u);
+  EXPECT_EQ(capped.witnessesDropped, expected - 3);
+}
+
+TEST(ExactMode, WorkBudgetStopsAndSaysSo) {
+  const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 40, 20);
+  AdbTree tree(mesh);
+  QueryScratch scratch;
+  QuerySettings s = test::exactSettings();
+  s.stopAtFirstHit = false;
+  s.budgetNodePairs = 50;
+  std::mt19937_64 rng(test::kSeed);
+  const PosePair p = benchmarkPoses(mesh.bounds(), 0.8, rng);
+  const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+  EXPECT_EQ(r.stop, StopReason::WorkBudget);
+  EXPECT_LE(r.nodePairs, 50u);
+}
+
+}  // namespace
+}  // namespace adb

@@ -1,0 +1,49 @@
+// Shared helpers of the core tests: the brute-force oracle, fixed-seed poses, tolerances.
+#pragma once
+
+#include <random>
+
+#include "adb/core/benchmark_poses.h"
+#include "adb/core/mesh.h"
+#include "adb/core/query.h"
+#include "adb/core/triangle_test.h"
+
+namespace adb::test {
+
+/// Every seed in the tests is fixed: a failure reproduces.
+inline constexpr std::uint64_t kSeed = 20261121;
+
+/// World coordinates of a mesh vertex under a pose.
+inline Vec3 place(const Pose& p, const Vec3& x) { return p.rotation * x + p.translation; }
+
+/// The oracle: all triangle pairs of the two posed meshes, no hierarchy, no early culling
+/// beyond the exact test itself. O(n m): keep meshes small.
+inline bool bruteForceCollide(const TriangleMesh& a, const Pose& pa, const TriangleMesh& b,
+                              const Pose& pb) {
+  std::vector<Vec3> wb(b.vertices().size());
+  for (std::size_t i = 0; i < wb.size(); ++i) wb[i] = place(pb, b.vertices()[i]);
+  for (const Triangle& ta : a.triangles()) {
+    const Vec3 a0 = place(pa, a.vertices()[ta[0]]), a1 = place(pa, a.vertices()[ta[1]]),
+               a2 = place(pa, a.vertices()[ta[2]]);
+    for (const Triangle& tb : b.triangles()) {
+      if (trianglesIntersect(a0, a1, a2, wb[tb[0]], wb[tb[1]], wb[tb[2]])) return true;
+    }
+  }
+  return false;
+}
+
+inline QuerySettings exactSettings() {
+  QuerySettings s;
+  s.mode = QueryMode::Exact;
+  return s;
+}
+
+inline QuerySettings adbSettings(double pMin = 0.99, int kMin = 10) {
+  QuerySettings s;
+  s.mode = QueryMode::Adb;
+  s.pMin = pMin;
+  s.kMin = kMin;
+  return s;
+}
+
+}  // namespace adb::test
