@@ -26,17 +26,41 @@ namespace {
 // Transform-rounding tolerance of the overlap test, relative to the scene's magnitude.
 constexpr double kOverlapRelativeSlack = 1e-12;
 
-Vec3 halfExtent(const Node& n) { return 0.5 * (n.boxHi() - n.boxLo()); }
-Vec3 center(const Node& n) { return 0.5 * (n.boxHi() + n.boxLo()); }
+// One box seen from the other's frame: the AABB (centre c, half extent h) of the mapped box.
+struct MappedBox {
+  Vec3 c, h;
+};
 
-// Cells of side `cell` touched by the intersection of box (cA, hA) with the AABB of box
-// (cB, hB) mapped by (r, t); at least one per axis.
-double touchedCells(const Vec3& cA, const Vec3& hA, const Vec3& cB, const Vec3& hB,
-                    const Mat3& r, const Mat3& absR, const Vec3& t, double cell) {
-  const Vec3 c = r * cB + t;
-  const Vec3 h = absR * hB;
-  const Vec3 lo = (cA - hA).cwiseMax(c - h);
-  const Vec3 hi = (cA + hA).cwiseMin(c + h);
+struct BoxPair {
+  Vec3 cA, hA, cB, hB;  // each box in its own frame
+  MappedBox bInA, aInB;
+};
+
+BoxPair mapBoxes(const Node& a, const Node& b, const RelativeFrame& f) {
+  BoxPair p;
+  p.cA = 0.5 * (a.boxHi() + a.boxLo());
+  p.hA = 0.5 * (a.boxHi() - a.boxLo());
+  p.cB = 0.5 * (b.boxHi() + b.boxLo());
+  p.hB = 0.5 * (b.boxHi() - b.boxLo());
+  p.bInA = {mul(f.rBA, p.cB) + f.tBA, mul(f.absBA, p.hB)};
+  p.aInB = {mul(f.rAB, p.cA) + f.tAB, mul(f.absAB, p.hA)};
+  return p;
+}
+
+// The 6 face axes of the separating-axis test: B's box on A's axes, A's box on B's axes.
+// The 9 edge-edge axes would prune a few more pairs at twice the cost.
+bool overlapOnFaceAxes(const BoxPair& p, double slack) {
+  const Vec3 dA = (p.bInA.c - p.cA).cwiseAbs();
+  if ((dA.array() > (p.hA + p.bInA.h).array() + slack).any()) return false;
+  const Vec3 dB = (p.aInB.c - p.cB).cwiseAbs();
+  return !(dB.array() > (p.hB + p.aInB.h).array() + slack).any();
+}
+
+// Cells of side `cell` touched by the intersection of box (c, h) with a mapped box; at least
+// one per axis.
+double touchedCells(const Vec3& c, const Vec3& h, const MappedBox& other, double cell) {
+  const Vec3 lo = (c - h).cwiseMax(other.c - other.h);
+  const Vec3 hi = (c + h).cwiseMin(other.c + other.h);
   return ((hi - lo) / cell).cwiseMax(Vec3::Ones()).prod();
 }
 
@@ -68,37 +92,28 @@ RelativeFrame RelativeFrame::between(const AdbTree& a, const Pose& poseA, const 
 }
 
 bool boxesOverlap(const Node& a, const Node& b, const RelativeFrame& f) {
-  const Vec3 ca = center(a), ha = halfExtent(a);
-  const Vec3 cb = center(b), hb = halfExtent(b);
-  // B's box on A's axes, then A's box on B's axes: the 6 face axes of the separating-axis
-  // test. The 9 edge-edge axes would prune a few more pairs at twice the cost.
-  const Vec3 dA = (f.rBA * cb + f.tBA - ca).cwiseAbs();
-  if ((dA.array() > (ha + f.absBA * hb).array() + f.slack).any()) return false;
-  const Vec3 dB = (f.rAB * ca + f.tAB - cb).cwiseAbs();
-  return !(dB.array() > (hb + f.absAB * ha).array() + f.slack).any();
+  return overlapOnFaceAxes(mapBoxes(a, b, f), f.slack);
 }
 
 PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t ia, int depthA,
                           const TreeConstants& tb, std::uint32_t ib, int depthB,
                           const RelativeFrame& f) {
   PairEstimate e;
-  const Node& a = ta.tree->nodes()[ia];
-  const Node& b = tb.tree->nodes()[ib];
-  if (!boxesOverlap(a, b, f)) return e;
+  const BoxPair boxes = mapBoxes(ta.tree->nodes()[ia], tb.tree->nodes()[ib], f);
+  if (!overlapOnFaceAxes(boxes, f.slack)) return e;
   e.overlap = true;
 
   const NodeCells& cellsA = ta.tree->cells()[ia];
   const NodeCells& cellsB = tb.tree->cells()[ib];
   const double cell = std::max(cellsA.side, cellsB.side);  // > 0: sides are floored
-  const Vec3 cA = center(a), cB = center(b), hA = halfExtent(a), hB = halfExtent(b);
-  const double touched =
-      std::min(touchedCells(cA, hA, cB, hB, f.rBA, f.absBA, f.tBA, cell),
-               touchedCells(cB, hB, cA, hA, f.rAB, f.absAB, f.tAB, cell));
+  const double touched = std::min(touchedCells(boxes.cA, boxes.hA, boxes.bInA, cell),
+                                  touchedCells(boxes.cB, boxes.hB, boxes.aInB, cell));
   e.s = std::max(1, roundCount(touched, kMaxBins));
   const double rhoA = std::min(1.0, cellsA.density * (cell / cellsA.side));
   const double rhoB = std::min(1.0, cellsB.density * (cell / cellsB.side));
   e.sA = std::min(e.s, roundCount(rhoA * e.s, kMaxBins));
   e.sB = std::min(e.s, roundCount(rhoB * e.s, kMaxBins));
+  if (e.sA == 0 || e.sB == 0) return e;  // no possible collision cell on one side: p = 0
   const double lb = cellIntersectionBound(depthA, depthB, ta.maxDepth, tb.maxDepth);
   const CollisionEstimate c = estimateCollision(e.s, e.sA, e.sB, lb);
   e.lower = c.lower;

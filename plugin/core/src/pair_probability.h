@@ -8,6 +8,14 @@
 
 namespace adb::detail {
 
+/// m * v, written out: Eigen leaves 3x3 * 3-vector products out of line at -O2, and this
+/// is the traversal's inner loop.
+inline Vec3 mul(const Mat3& m, const Vec3& v) {
+  return Vec3(m(0, 0) * v[0] + m(0, 1) * v[1] + m(0, 2) * v[2],
+              m(1, 0) * v[0] + m(1, 1) * v[1] + m(1, 2) * v[2],
+              m(2, 0) * v[0] + m(2, 1) * v[1] + m(2, 2) * v[2]);
+}
+
 /// The relative placement of tree B in tree A's local frame, and the reverse, fixed for one
 /// query. x_A = rBA * x_B + tBA.
 struct RelativeFrame {
@@ -16,6 +24,9 @@ struct RelativeFrame {
   Mat3 rAB, absAB;  // rotation A -> B
   Vec3 tAB;
   double slack = 0.0;  // absolute overlap tolerance: rounding of the transform, never less
+
+  /// A point of B's local frame in A's local frame.
+  Vec3 bToA(const Vec3& x) const { return mul(rBA, x) + tBA; }
 
   static RelativeFrame between(const AdbTree& a, const Pose& poseA, const AdbTree& b,
                                const Pose& poseB);

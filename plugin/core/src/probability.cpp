@@ -92,7 +92,13 @@ CollisionEstimate estimateCollision(int s, int sA, int sB, double lb) {
   if (xMax <= 0) return {};
   lb = std::isnan(lb) ? 0.0 : std::clamp(lb, 0.0, 1.0);
   std::array<double, kMaxCollisionCells> tail{};
-  hypergeometricTail(b.u, b.v, b.w, xMax, tail.data());
+  if (b.v + b.w - b.u >= xMax) {
+    // At least v + w - u bins must get both colours: every tail up to xMax is 1 (a common
+    // case for dense, deep node pairs; it skips the exp and the sums).
+    tail.fill(1.0);
+  } else {
+    hypergeometricTail(b.u, b.v, b.w, xMax, tail.data());
+  }
   double best = 0.0;
   double missAll = 1.0;  // (1 - lb)^x
   for (int x = 1; x <= xMax; ++x) {

@@ -115,7 +115,7 @@ class Traversal {
     Vec3 mapped[15][3];
     for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
       for (int k = 0; k < 3; ++k) {
-        mapped[j][k] = m_frame.rBA * vb[tb[nb.firstTriangle() + j][k]] + m_frame.tBA;
+        mapped[j][k] = m_frame.bToA(vb[tb[nb.firstTriangle() + j][k]]);
       }
     }
     bool hit = false;
