@@ -36,24 +36,20 @@ struct BoxPair {
   MappedBox bInA, aInB;
 };
 
-BoxPair mapBoxes(const Node& a, const Node& b, const RelativeFrame& f) {
-  BoxPair p;
+// Maps the boxes into each other's frame and tests the 6 face axes of the separating-axis
+// test on the way: B's box on A's axes first, and only if that overlaps, A's box on B's axes.
+// The 9 edge-edge axes would prune a few more pairs at twice the cost.
+bool mapAndTest(const Node& a, const Node& b, const RelativeFrame& f, BoxPair& p) {
   p.cA = 0.5 * (a.boxHi() + a.boxLo());
   p.hA = 0.5 * (a.boxHi() - a.boxLo());
   p.cB = 0.5 * (b.boxHi() + b.boxLo());
   p.hB = 0.5 * (b.boxHi() - b.boxLo());
   p.bInA = {mul(f.rBA, p.cB) + f.tBA, mul(f.absBA, p.hB)};
-  p.aInB = {mul(f.rAB, p.cA) + f.tAB, mul(f.absAB, p.hA)};
-  return p;
-}
-
-// The 6 face axes of the separating-axis test: B's box on A's axes, A's box on B's axes.
-// The 9 edge-edge axes would prune a few more pairs at twice the cost.
-bool overlapOnFaceAxes(const BoxPair& p, double slack) {
   const Vec3 dA = (p.bInA.c - p.cA).cwiseAbs();
-  if ((dA.array() > (p.hA + p.bInA.h).array() + slack).any()) return false;
+  if ((dA.array() > (p.hA + p.bInA.h).array() + f.slack).any()) return false;
+  p.aInB = {mul(f.rAB, p.cA) + f.tAB, mul(f.absAB, p.hA)};
   const Vec3 dB = (p.aInB.c - p.cB).cwiseAbs();
-  return !(dB.array() > (p.hB + p.aInB.h).array() + slack).any();
+  return !(dB.array() > (p.hB + p.aInB.h).array() + f.slack).any();
 }
 
 // Cells of side `cell` touched by the intersection of box (c, h) with a mapped box; at least
@@ -92,15 +88,16 @@ RelativeFrame RelativeFrame::between(const AdbTree& a, const Pose& poseA, const 
 }
 
 bool boxesOverlap(const Node& a, const Node& b, const RelativeFrame& f) {
-  return overlapOnFaceAxes(mapBoxes(a, b, f), f.slack);
+  BoxPair boxes;
+  return mapAndTest(a, b, f, boxes);
 }
 
 PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t ia, int depthA,
                           const TreeConstants& tb, std::uint32_t ib, int depthB,
                           const RelativeFrame& f) {
   PairEstimate e;
-  const BoxPair boxes = mapBoxes(ta.tree->nodes()[ia], tb.tree->nodes()[ib], f);
-  if (!overlapOnFaceAxes(boxes, f.slack)) return e;
+  BoxPair boxes;
+  if (!mapAndTest(ta.tree->nodes()[ia], tb.tree->nodes()[ib], f, boxes)) return e;
   e.overlap = true;
 
   const NodeCells& cellsA = ta.tree->cells()[ia];
