@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
+#include <string>
 #include <thread>
 
 #include "adb/core/mesh_generators.h"
@@ -67,26 +68,19 @@ ErrorRate measureErrorRate(const TriangleMesh& mesh, int posesPerDistance,
 // a 3 % proportion: 1.5 points).
 constexpr double kMaxErrorPercent = 4.7;
 
-TEST(AdbErrorRate, TorusKnotBelowBound) {
+void expectErrorRateBelowBound(const std::string& model) {
   const ErrorRate e =
-      measureErrorRate(gen::makeModel("knot", 20000), 30, test::adbSettings(0.99, 10));
-  EXPECT_GT(e.counted, 300);
-  EXPECT_LE(e.percent(), kMaxErrorPercent) << e.wrong << " of " << e.counted;
+      measureErrorRate(gen::makeModel(model, 20000), 30, test::adbSettings(0.99, 10));
+  // Most of the 510 poses have overlapping root boxes; far fewer would make the rate noise.
+  EXPECT_GT(e.counted, 300) << model;
+  EXPECT_LE(e.percent(), kMaxErrorPercent) << model << ": " << e.wrong << " of " << e.counted;
 }
 
-TEST(AdbErrorRate, PipesBelowBound) {
-  const ErrorRate e =
-      measureErrorRate(gen::makeModel("pipes", 20000), 30, test::adbSettings(0.99, 10));
-  EXPECT_GT(e.counted, 300);
-  EXPECT_LE(e.percent(), kMaxErrorPercent) << e.wrong << " of " << e.counted;
-}
-
-TEST(AdbErrorRate, GearsBelowBound) {
-  const ErrorRate e =
-      measureErrorRate(gen::makeModel("gears", 20000), 30, test::adbSettings(0.99, 10));
-  EXPECT_GT(e.counted, 300);
-  EXPECT_LE(e.percent(), kMaxErrorPercent) << e.wrong << " of " << e.counted;
-}
+TEST(AdbErrorRate, TorusKnotBelowBound) { expectErrorRateBelowBound("knot"); }
+TEST(AdbErrorRate, PipesBelowBound) { expectErrorRateBelowBound("pipes"); }
+TEST(AdbErrorRate, GearsBelowBound) { expectErrorRateBelowBound("gears"); }
+TEST(AdbErrorRate, LockBelowBound) { expectErrorRateBelowBound("lock"); }
+TEST(AdbErrorRate, TorusBelowBound) { expectErrorRateBelowBound("torus"); }
 
 TEST(AdbErrorRate, LowerQualitySettingsMakeMoreErrorsNotFewer) {
   // The paper's trend (Fig. 11): p_min 0.5 / k_min 1 errs at least as often as 0.99 / 10,
