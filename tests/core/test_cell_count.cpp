@@ -85,11 +85,14 @@ double relativeDisagreement(const TriangleMesh& mesh) {
   return sumExact > 0.0 ? sumAbsDiff / sumExact : 0.0;
 }
 
-// The stated tolerance: the approximate count is within 50 % of the exact one (mean absolute
-// deviation relative to the mean count) on the upper half of the tree, where the traversal
-// decides. Measured values are in docs/probability-model.md; the paper reports the effect on
-// error rates (+0.2 points), not on counts.
-constexpr double kApproximateTolerance = 0.5;
+// The stated tolerances (mean absolute deviation relative to the mean count, on the upper
+// half of the tree, where the traversal decides). Measured at 8k triangles: torus 0.08,
+// sphere 0.07, knot 0.11, gears 0.14, lock 0.13, pipes 0.44. The paper reports the effect on
+// error rates (+0.2 points), not on counts; docs/probability-model.md has the per-depth table.
+constexpr double kApproximateTolerance = 0.2;
+// Pipe walls are stacked closer than a cell near the root: the approximate count adds both
+// walls' area (two cells' worth), the exact count sees one cell.
+constexpr double kStackedWallsTolerance = 0.5;
 
 TEST(CellCountApproximate, AgreesWithExactOnTorus) {
   EXPECT_LT(relativeDisagreement(gen::makeTorus(1.0, 0.3, 64, 32)), kApproximateTolerance);
@@ -100,8 +103,14 @@ TEST(CellCountApproximate, AgreesWithExactOnSphere) {
 TEST(CellCountApproximate, AgreesWithExactOnTorusKnot) {
   EXPECT_LT(relativeDisagreement(gen::makeModel("knot", 8000)), kApproximateTolerance);
 }
-TEST(CellCountApproximate, AgreesWithExactOnPipes) {
-  EXPECT_LT(relativeDisagreement(gen::makeModel("pipes", 8000)), kApproximateTolerance);
+TEST(CellCountApproximate, AgreesWithExactOnGears) {
+  EXPECT_LT(relativeDisagreement(gen::makeModel("gears", 8000)), kApproximateTolerance);
+}
+TEST(CellCountApproximate, AgreesWithExactOnLock) {
+  EXPECT_LT(relativeDisagreement(gen::makeModel("lock", 8000)), kApproximateTolerance);
+}
+TEST(CellCountApproximate, AgreesWithExactOnPipesWithinTheStackedWallsTolerance) {
+  EXPECT_LT(relativeDisagreement(gen::makeModel("pipes", 8000)), kStackedWallsTolerance);
 }
 
 TEST(CellCountApproximate, CountsStayWithinTheGrid) {
