@@ -123,9 +123,9 @@ TEST(CellCountApproximate, CountsStayWithinTheGrid) {
         ASSERT_TRUE(std::isfinite(n.pc));
         ASSERT_GE(n.pc, 0.0f);
         ASSERT_LE(n.pc, detail::gridShape(n.boxHi() - n.boxLo(), g).count());
-        ASSERT_GE(tree.cells()[i].density, 0.0f);
-        ASSERT_LE(tree.cells()[i].density, 1.0f);
-        ASSERT_GT(tree.cells()[i].side, 0.0f);
+        ASSERT_GE(tree.distributions()[i].density, 0.0f);
+        ASSERT_LE(tree.distributions()[i].density, 1.0f);
+        ASSERT_GT(tree.distributions()[i].side, 0.0f);
       }
     }
   }

@@ -83,7 +83,7 @@ TEST(HardCaseFlat, FlatMeshesGiveFiniteCountsAndExactAnswers) {
     // A fully covered flat square: one layer of 23 x 23 flat cells (node_geometry.h), all
     // possible collision cells; the approximate count (area / h^2) lands on the same number.
     EXPECT_NEAR(tree.root().pc, 529.0f, counting == CellCounting::Exact ? 0.0f : 529.0f * 0.05f);
-    EXPECT_NEAR(tree.cells()[0].density, 1.0f, 0.05f);
+    EXPECT_NEAR(tree.distributions()[0].density, 1.0f, 0.05f);
     for (const Node& node : tree.nodes()) ASSERT_TRUE(std::isfinite(node.pc));
   }
   checkAgainstOracle(flat, flat, 40);

@@ -96,7 +96,7 @@ double exactCellCount(const AdbTree& tree, std::uint32_t node, std::uint32_t fir
 }
 
 void fillCellStatistics(AdbTree& tree) {
-  auto& cells = TreeBuilderAccess::cells(tree);
+  auto& cells = TreeBuilderAccess::distributions(tree);
   const auto& nodes = tree.nodes();
   cells.resize(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {

@@ -45,9 +45,12 @@ struct PairEstimate {
   int s = 0, sA = 0, sB = 0;
 };
 
-/// True when the boxes of a (tree A) and b (tree B) overlap on A's and B's face axes,
-/// touching included (within frame.slack).
-bool boxesOverlap(const Node& a, const Node& b, const RelativeFrame& frame);
+/// True unless node a (tree A) and node b (tree B) are proven apart: by a face axis of
+/// either box, or by either node's slab (NodeDistribution) against the other's box. Touching
+/// counts as overlapping (within frame.slack): the test never prunes a pair whose triangles
+/// could meet.
+bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
+                  std::uint32_t b, const RelativeFrame& frame);
 
 /// Overlap test plus, when they overlap, the probability of the pair at the given depths.
 PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t a, int depthA,

@@ -155,7 +155,7 @@ class Traversal {
   // --- exact mode: depth-first over overlapping boxes ----------------------------------
   void runExact() {
     ++m_result.nodePairs;
-    if (!detail::boxesOverlap(m_a.tree->root(), m_b.tree->root(), m_frame)) {
+    if (!detail::nodesOverlap(m_a, 0, m_b, 0, m_frame)) {
       finish(false, 1.0, StopReason::Completed);
       return;
     }
@@ -186,7 +186,7 @@ class Traversal {
       for (int i = 0; i < na2; ++i) {
         for (int j = 0; j < nb2; ++j) {
           ++m_result.nodePairs;
-          if (detail::boxesOverlap(m_a.tree->nodes()[ca[i]], m_b.tree->nodes()[cb[j]], m_frame)) {
+          if (detail::nodesOverlap(m_a, ca[i], m_b, cb[j], m_frame)) {
             m_heap.push_back(Entry{1.0f, 1.0f, ca[i], cb[j], 0, 0});
           }
         }

@@ -36,6 +36,7 @@ AdbTree::AdbTree(const TriangleMesh& mesh, const BuildSettings& settings) : m_se
   auto t0 = std::chrono::steady_clock::now();
   detail::buildHierarchy(*this, mesh, settings.maxLeafTriangles);
   detail::computeSurfaces(*this);
+  detail::computeSlabs(*this);
   m_hierarchySeconds = secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
   if (settings.counting == CellCounting::Exact) {
@@ -48,7 +49,7 @@ AdbTree::AdbTree(const TriangleMesh& mesh, const BuildSettings& settings) : m_se
 
 std::size_t AdbTree::memoryBytes() const {
   return m_nodes.capacity() * sizeof(Node) + m_surfaces.capacity() * sizeof(NodeSurface) +
-         m_cells.capacity() * sizeof(NodeCells) +
+         m_distributions.capacity() * sizeof(NodeDistribution) +
          m_vertices.capacity() * sizeof(Vec3) + m_triangles.capacity() * sizeof(Triangle) +
          m_meshTriangle.capacity() * sizeof(std::uint32_t);
 }

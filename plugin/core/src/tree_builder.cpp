@@ -150,6 +150,60 @@ void computeSurfaces(AdbTree& tree) {
   }
 }
 
+namespace {
+
+// The slab normal of a node: its mean surface normal where the normals agree enough to make a
+// thin slab, else the box's thinnest axis (a closed or strongly curved patch).
+Vec3 slabNormal(const Node& node, const NodeSurface& surface) {
+  // Below this coherence (|sum a n| / sum a) the mean normal is mostly cancellation.
+  constexpr float kMinCoherence = 0.3f;
+  if (surface.coherence >= kMinCoherence) {
+    return Vec3(surface.normal[0], surface.normal[1], surface.normal[2]);
+  }
+  const Vec3 e = node.boxHi() - node.boxLo();
+  int axis = 0;
+  if (e.y() < e[axis]) axis = 1;
+  if (e.z() < e[axis]) axis = 2;
+  return Vec3::Unit(axis);
+}
+
+// Rounds a float up so that it is >= x (x >= 0).
+float roundUp(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, INFINITY);
+  return f;
+}
+
+}  // namespace
+
+void computeSlabs(AdbTree& tree) {
+  const auto& nodes = tree.nodes();
+  auto& dist = TreeBuilderAccess::distributions(tree);
+  dist.resize(nodes.size());
+  const auto ranges = triangleRanges(tree);
+  const auto& verts = tree.localVertices();
+  const auto& tris = tree.triangles();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const NodeSurface& surface = tree.surfaces()[i];
+    const Vec3 n = slabNormal(nodes[i], surface);
+    // The stored (float) normal and offset are what the traversal reads: measure the width
+    // against those, in double, and round it up, so the slab is conservative as stored.
+    float normal[3];
+    for (int k = 0; k < 3; ++k) normal[k] = static_cast<float>(n[k]);
+    const Vec3 nf(normal[0], normal[1], normal[2]);
+    const Vec3 c(surface.centroid[0], surface.centroid[1], surface.centroid[2]);
+    const float offset = static_cast<float>(nf.dot(c));
+    double width = 0.0;
+    for (std::uint32_t t = ranges[i].first; t < ranges[i].second; ++t) {
+      for (std::uint32_t v : tris[t]) width = std::max(width, std::abs(nf.dot(verts[v]) - offset));
+    }
+    NodeDistribution& d = dist[i];
+    for (int k = 0; k < 3; ++k) d.normal[k] = normal[k];
+    d.offset = offset;
+    d.halfWidth = roundUp(width);
+  }
+}
+
 std::vector<std::pair<std::uint32_t, std::uint32_t>> triangleRanges(const AdbTree& tree) {
   const auto& nodes = tree.nodes();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> range(nodes.size());

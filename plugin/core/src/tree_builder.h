@@ -12,7 +12,7 @@ namespace adb {
 struct TreeBuilderAccess {
   static std::vector<Node>& nodes(AdbTree& t) { return t.m_nodes; }
   static std::vector<NodeSurface>& surfaces(AdbTree& t) { return t.m_surfaces; }
-  static std::vector<NodeCells>& cells(AdbTree& t) { return t.m_cells; }
+  static std::vector<NodeDistribution>& distributions(AdbTree& t) { return t.m_distributions; }
   static std::vector<Vec3>& vertices(AdbTree& t) { return t.m_vertices; }
   static std::vector<Triangle>& triangles(AdbTree& t) { return t.m_triangles; }
   static std::vector<std::uint32_t>& meshTriangle(AdbTree& t) { return t.m_meshTriangle; }
@@ -28,6 +28,10 @@ void buildHierarchy(AdbTree& tree, const TriangleMesh& mesh, int maxLeafTriangle
 
 /// Fills the per-node surface statistics bottom-up.
 void computeSurfaces(AdbTree& tree);
+
+/// Fills the slab of every node's NodeDistribution (normal, offset, half width): needs the
+/// surfaces. Resizes the distributions to the node count.
+void computeSlabs(AdbTree& tree);
 
 /// Per-node triangle ranges [first, last) in tree order (inner nodes own their subtree's).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> triangleRanges(const AdbTree& tree);

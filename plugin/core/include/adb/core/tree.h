@@ -71,13 +71,21 @@ struct NodeSurface {
 };
 static_assert(sizeof(NodeSurface) == 32, "NodeSurface layout");
 
-/// Per-node cell statistics read by the pair probability, 8 bytes. The grid of a node holds
-/// about G^3 near-cubic cells (see docs/probability-model.md).
-struct NodeCells {
-  float side;     // nominal side h of the node's cells, local units
-  float density;  // possible collision cells / cells of the node's grid, in [0, 1]
+/// How a node's polygons are distributed, read by the traversal next to Node: 32 bytes.
+/// The slab {x : |normal . x - offset| <= halfWidth} holds every vertex below the node, so
+/// box-and-slab is a tighter bounding volume than the box alone (a curved sheet's nodes are
+/// thin along their mean normal). The grid of a node holds about G^3 near-cubic cells (see
+/// docs/probability-model.md).
+struct NodeDistribution {
+  float normal[3];  // 12 bytes: unit slab normal (the mean surface normal, or the box's
+                    //           thinnest axis where normals cancel)
+  float offset;     //  4 bytes: normal . (a point of the slab's mid-plane)
+  float halfWidth;  //  4 bytes: half the slab's width, rounded up
+  float side;       //  4 bytes: nominal side h of the node's cells, local units
+  float density;    //  4 bytes: possible collision cells / cells of the node's grid, [0, 1]
+  float unused;     //  4 bytes: keeps two per cache line
 };
-static_assert(sizeof(NodeCells) == 8, "NodeCells layout");
+static_assert(sizeof(NodeDistribution) == 32, "NodeDistribution layout");
 
 class AdbTree {
  public:
@@ -86,7 +94,7 @@ class AdbTree {
 
   const std::vector<Node>& nodes() const { return m_nodes; }
   const std::vector<NodeSurface>& surfaces() const { return m_surfaces; }
-  const std::vector<NodeCells>& cells() const { return m_cells; }
+  const std::vector<NodeDistribution>& distributions() const { return m_distributions; }
   const Node& root() const { return m_nodes[0]; }
 
   /// Vertices in local coordinates: mesh coordinates minus origin().
@@ -112,7 +120,7 @@ class AdbTree {
   BuildSettings m_settings;
   std::vector<Node> m_nodes;
   std::vector<NodeSurface> m_surfaces;
-  std::vector<NodeCells> m_cells;
+  std::vector<NodeDistribution> m_distributions;
   std::vector<Vec3> m_vertices;
   std::vector<Triangle> m_triangles;
   std::vector<std::uint32_t> m_meshTriangle;
