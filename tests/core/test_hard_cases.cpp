@@ -247,6 +247,32 @@ TEST(HardCaseBudget, HugeBudgetsEqualNoBudget) {
   }
 }
 
+TEST(HardCaseBadInput, NonFiniteOrSkewedPosesAreRejected) {
+  const TriangleMesh mesh = gen::makeSphere(1.0, 1);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  const auto message = [&](const Pose& pb) -> std::string {
+    try {
+      collide(tree, Pose{}, tree, pb, test::adbSettings(), scratch);
+    } catch (const PoseError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  Pose p;
+  p.translation.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(message(p).find("pose B has a non-finite entry"), std::string::npos);
+  p = Pose{};
+  p.rotation(1, 2) = std::numeric_limits<double>::infinity();
+  EXPECT_NE(message(p).find("non-finite"), std::string::npos);
+  p = Pose{};
+  p.rotation *= 2.0;  // a scale is not a rotation
+  EXPECT_NE(message(p).find("not orthonormal"), std::string::npos);
+  // A rotation built from a quaternion in double is orthonormal to rounding: accepted.
+  EXPECT_EQ(message(Pose::fromQuaternion(Eigen::Quaterniond(0.3, 0.1, -0.7, 0.2), Vec3(1, 2, 3))),
+            "");
+}
+
 TEST(HardCaseBadInput, InvalidQuerySettingsAreRejectedWithTheirName) {
   const TriangleMesh mesh = gen::makeSphere(1.0, 1);
   const AdbTree tree(mesh);

@@ -343,9 +343,30 @@ void validate(const QuerySettings& s) {
   }
 }
 
+namespace {
+
+// The traversal inverts rotations by transposing them: a scaled or sheared "rotation" would
+// silently misplace every box, so it is refused at the door.
+constexpr double kOrthonormalTolerance = 1e-6;
+
+void validatePose(const Pose& p, const char* which) {
+  const auto fail = [&](const std::string& why) {
+    throw PoseError(std::string("collide: pose ") + which + " " + why);
+  };
+  if (!p.rotation.allFinite() || !p.translation.allFinite()) fail("has a non-finite entry");
+  const double off = (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
+  if (off > kOrthonormalTolerance) {
+    fail("has a rotation that is not orthonormal (|R^T R - I| = " + std::to_string(off) + ")");
+  }
+}
+
+}  // namespace
+
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch) {
   validate(settings);
+  validatePose(poseA, "A");
+  validatePose(poseB, "B");
   return Traversal(a, poseA, b, poseB, settings, scratch).run();
 }
 

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "adb/core/geometry.h"
@@ -96,9 +97,16 @@ class QueryScratch {
   std::vector<Witness> m_witnesses;
 };
 
+/// Thrown for a pose with a non-finite entry or a rotation that is not orthonormal.
+class PoseError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 /// Tests tree `a` at `poseA` against tree `b` at `poseB` (poses map each mesh's own
 /// coordinates to the world). Throws SettingsError for invalid settings (pMin outside [0, 1],
-/// kMin < 1, NaN or negative budget); never throws for a valid call.
+/// kMin < 1, NaN or negative budget) and PoseError for a bad pose (non-finite, or a rotation
+/// off orthonormal by more than 1e-6); never throws for a valid call.
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch);
 
