@@ -203,6 +203,34 @@ TEST(HardCaseScale, TinyAndHugeScalesGiveTheSameAnswers) {
   }
 }
 
+TEST(HardCaseScale, MeshesOutsideTheFloatRangeAreRejected) {
+  const TriangleMesh unit = gen::makeTorus(1.0, 0.3, 12, 6);
+  for (double scale : {1e-14, 1e14, 1e39}) {
+    std::vector<Vec3> v = unit.vertices();
+    for (Vec3& x : v) x *= scale;
+    const TriangleMesh scaled(v, unit.triangles(), "scaled torus");
+    try {
+      AdbTree tree(scaled);
+      FAIL() << "scale " << scale;
+    } catch (const MeshError& e) {
+      EXPECT_NE(std::string(e.what()).find("scaled torus"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("rescale"), std::string::npos);
+    }
+  }
+  // The ends of the supported range still answer exactly.
+  for (double scale : {1e-9, 1e9}) {
+    std::vector<Vec3> v = unit.vertices();
+    for (Vec3& x : v) x *= scale;
+    const TriangleMesh scaled(v, unit.triangles());
+    const AdbTree tree(scaled);
+    QueryScratch scratch;
+    const Pose near{Mat3::Identity(), Vec3(1.0 * scale, 0, 0)};
+    const Pose far{Mat3::Identity(), Vec3(3.0 * scale, 0, 0)};
+    EXPECT_TRUE(collide(tree, Pose{}, tree, near, test::exactSettings(), scratch).collides);
+    EXPECT_FALSE(collide(tree, Pose{}, tree, far, test::exactSettings(), scratch).collides);
+  }
+}
+
 TEST(HardCaseBudget, ZeroBudgetsAreValid) {
   const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 40, 20);
   const AdbTree tree(mesh);
@@ -245,6 +273,28 @@ TEST(HardCaseBudget, HugeBudgetsEqualNoBudget) {
     EXPECT_EQ(free.confidence, big.confidence);
     EXPECT_EQ(free.nodePairs, big.nodePairs);
   }
+}
+
+TEST(HardCaseTouching, NearlyOrthonormalRotationsKeepExactAnswers) {
+  // B's rotation is orthonormal only to ~1e-6 (accepted: the pose tolerance is 1e-6): a turn
+  // about x, scaled by 1 + 4.9e-7. B sits beside A's +x face, overlapping or apart by 1e-7 to
+  // 5e-7. The frame uses true inverses (a transpose would misplace A in B's frame by ~1e-6),
+  // so exact mode agrees with the oracle applying the same matrices.
+  const TriangleMesh box = gen::makeBox(Vec3(0.5, 0.5, 0.5), 8);
+  const AdbTree tree(box);
+  QueryScratch scratch;
+  constexpr double kScale = 1.0 + 4.9e-7;
+  int collisions = 0;
+  for (int i = 0; i < 100; ++i) {
+    const Mat3 r = Eigen::AngleAxisd(0.01 * i, Vec3::UnitX()).toRotationMatrix() * kScale;
+    const double gap = (i % 2 == 0 ? -1e-7 : 1e-7) * (1 + i % 5);  // < 0: overlap
+    const Pose pb{r, Vec3(0.5 + 0.5 * kScale + gap, 0.1, -0.2)};
+    const bool truth = test::bruteForceCollide(box, Pose{}, box, pb);
+    collisions += truth ? 1 : 0;
+    EXPECT_EQ(collide(tree, Pose{}, tree, pb, test::exactSettings(), scratch).collides, truth)
+        << "pose " << i << " gap " << gap;
+  }
+  EXPECT_EQ(collisions, 50);  // the overlapping half
 }
 
 TEST(HardCaseBadInput, NonFiniteOrSkewedPosesAreRejected) {

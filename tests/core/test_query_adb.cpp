@@ -134,6 +134,97 @@ TEST(AdbConfidence, ExactModeWithMoreBudgetNeverLowersTheConfidence) {
   }
 }
 
+// Answers grouped by their confidence: how many, how many wrong.
+struct Calibration {
+  int confident = 0, confidentWrong = 0;  // confidence >= 0.99
+  int wrongAboveHalf = 0;                 // wrong answers claiming confidence >= 0.5
+};
+
+Calibration calibrate(const std::string& model, int grid) {
+  const TriangleMesh mesh = gen::makeModel(model, 5000);
+  BuildSettings b;
+  b.gridResolution = grid;
+  const AdbTree tree(mesh, b);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  Calibration c;
+  for (int step = 0; step <= 16; ++step) {
+    for (int i = 0; i < 20; ++i) {
+      const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng);
+      const bool truth = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch).collides;
+      const QueryResult r = collide(tree, p.a, tree, p.b, test::adbSettings(), scratch);
+      const bool wrong = r.collides != truth;
+      if (r.confidence >= 0.99) {
+        ++c.confident;
+        c.confidentWrong += wrong ? 1 : 0;
+      }
+      if (wrong && r.confidence >= 0.5) ++c.wrongAboveHalf;
+    }
+  }
+  return c;
+}
+
+TEST(AdbConfidence, ConfidentAnswersAreRightAtAboutTheClaimedRate) {
+  // Claimed: >= 99 % right. Allowed: 98 % (a 1-point margin for ~300 samples per model).
+  for (const char* model : {"knot", "pipes", "torus"}) {
+    const Calibration c = calibrate(model, 8);
+    ASSERT_GT(c.confident, 200) << model;
+    EXPECT_LE(c.confidentWrong, c.confident / 50) << model;
+  }
+}
+
+TEST(AdbConfidence, PrunedDoubtShowsInTheConfidence) {
+  // One cell per node: rounding prunes most pairs, so ADB misses most collisions. The
+  // confidence must say so: pruned pairs keep their expected collision cells as doubt.
+  for (const char* model : {"knot", "torus"}) {
+    const Calibration c = calibrate(model, 1);
+    EXPECT_EQ(c.wrongAboveHalf, 0) << model;
+  }
+}
+
+TEST(AdbConfidence, AnExactHitMakesACollisionCertainWhateverStops) {
+  // With every hit collected, the traversal can reach k_min after an exact hit: certain.
+  const TriangleMesh mesh = gen::makeModel("knot", 5000);
+  BuildSettings b;
+  b.maxLeafTriangles = 1;
+  const AdbTree tree(mesh, b);
+  QueryScratch scratch;
+  QuerySettings s = test::adbSettings(0.9, 2);
+  s.stopAtFirstHit = false;
+  std::mt19937_64 rng(test::kSeed);
+  int withHit = 0;
+  for (int i = 0; i < 200; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.008 * i, rng);
+    const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+    bool exact = false;
+    for (const Witness& w : scratch.witnesses()) exact = exact || w.isExact();
+    if (!exact) continue;
+    ++withHit;
+    EXPECT_TRUE(r.collides);
+    EXPECT_EQ(r.confidence, 1.0) << "pose " << i << " stopped by " << toString(r.stop);
+  }
+  EXPECT_GT(withHit, 5);
+}
+
+TEST(AdbWitnesses, NoCollisionAnswersCarryNoWitnesses) {
+  const TriangleMesh mesh = gen::makeModel("pipes", 5000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  for (int i = 0; i < 300; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.006 * i, rng);
+    for (std::uint64_t budget : {16ull, 256ull, 1ull << 30}) {
+      QuerySettings s = test::adbSettings();
+      s.budgetNodePairs = budget;
+      const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+      if (!r.collides) {
+        EXPECT_EQ(r.witnessCount, 0u);
+      }
+      EXPECT_EQ(r.witnessCount, scratch.witnesses().size());
+    }
+  }
+}
+
 TEST(AdbWitnesses, CollisionAnswersCarryAcceptedPairs) {
   const TriangleMesh mesh = gen::makeModel("knot", 20000);
   const AdbTree tree(mesh);

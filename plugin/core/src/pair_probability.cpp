@@ -53,12 +53,13 @@ bool mapAndTest(const Node& a, const Node& b, const RelativeFrame& f, BoxPair& p
 }
 
 // The other node's box (centre `c` already in this node's frame, half extents `h` along its
-// own axes, `toOther` rotating this frame into the other's) against this node's slab.
-bool slabOverlaps(const NodeDistribution& d, const Vec3& c, const Vec3& h, const Mat3& toOther,
-                  double slack) {
+// own axes, `otherToThisT` the transpose of the map from its frame into this one) against this
+// node's slab.
+bool slabOverlaps(const NodeDistribution& d, const Vec3& c, const Vec3& h,
+                  const Mat3& otherToThisT, double slack) {
   const Vec3 n(d.normal[0], d.normal[1], d.normal[2]);
-  // The box's radius along n: sum over its axes of |n . axis| * half extent.
-  const double radius = mul(toOther, n).cwiseAbs().dot(h);
+  // The box's radius along n: sum over its axes of |n . mapped axis| * half extent.
+  const double radius = mul(otherToThisT, n).cwiseAbs().dot(h);
   return std::abs(n.dot(c) - d.offset) <= d.halfWidth + radius + slack;
 }
 
@@ -67,8 +68,8 @@ bool slabOverlaps(const NodeDistribution& d, const Vec3& c, const Vec3& h, const
 bool mapAndTestAll(const TreeConstants& ta, std::uint32_t ia, const TreeConstants& tb,
                    std::uint32_t ib, const RelativeFrame& f, BoxPair& p) {
   if (!mapAndTest(ta.tree->nodes()[ia], tb.tree->nodes()[ib], f, p)) return false;
-  return slabOverlaps(ta.tree->distributions()[ia], p.bInA.c, p.hB, f.rAB, f.slack) &&
-         slabOverlaps(tb.tree->distributions()[ib], p.aInB.c, p.hA, f.rBA, f.slack);
+  return slabOverlaps(ta.tree->distributions()[ia], p.bInA.c, p.hB, f.rBAt, f.slack) &&
+         slabOverlaps(tb.tree->distributions()[ib], p.aInB.c, p.hA, f.rABt, f.slack);
 }
 
 // Cells of side `cell` touched by the intersection of box (c, h) with a mapped box; at least
@@ -93,12 +94,17 @@ RelativeFrame RelativeFrame::between(const AdbTree& a, const Pose& poseA, const 
   const Vec3 ta = poseA.rotation * a.origin() + poseA.translation;
   const Vec3 tb = poseB.rotation * b.origin() + poseB.translation;
   RelativeFrame f;
-  f.rBA = poseA.rotation.transpose() * poseB.rotation;
-  f.tBA = poseA.rotation.transpose() * (tb - ta);
-  f.rAB = f.rBA.transpose();
+  // world -> A is the inverse of A's rotation; exact inverses keep the frame consistent for
+  // rotations that are orthonormal only to the pose tolerance.
+  const Mat3 worldToA = poseA.rotation.inverse();
+  f.rBA = worldToA * poseB.rotation;
+  f.tBA = worldToA * (tb - ta);
+  f.rAB = f.rBA.inverse();
   f.tAB = -(f.rAB * f.tBA);
   f.absBA = f.rBA.cwiseAbs();
   f.absAB = f.rAB.cwiseAbs();
+  f.rBAt = f.rBA.transpose();
+  f.rABt = f.rAB.transpose();
   const auto radius = [](const Node& n) {
     return std::max(n.boxLo().cwiseAbs().maxCoeff(), n.boxHi().cwiseAbs().maxCoeff());
   };
@@ -130,6 +136,9 @@ PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t ia, int depthA,
   const double rhoB = std::min(1.0, cellsB.density * (cell / cellsB.side));
   e.sA = std::min(e.s, roundCount(rhoA * e.s, kMaxBins));
   e.sB = std::min(e.s, roundCount(rhoB * e.s, kMaxBins));
+  // E[X] = v w / u before rounding: a pair that rounding prunes (s_A or s_B = 0) keeps this
+  // much doubt in the confidence (Markov: Pr[X >= 1] <= E[X]).
+  e.expected = std::min(1.0, rhoA * rhoB * e.s);
   if (e.sA == 0 || e.sB == 0) return e;  // no possible collision cell on one side: p = 0
   const double lb = cellIntersectionBound(depthA, depthB, ta.maxDepth, tb.maxDepth);
   const CollisionEstimate c = estimateCollision(e.s, e.sA, e.sB, lb);

@@ -21,8 +21,9 @@ inline Vec3 mul(const Mat3& m, const Vec3& v) {
 struct RelativeFrame {
   Mat3 rBA, absBA;  // rotation B -> A and its element-wise absolute value
   Vec3 tBA;
-  Mat3 rAB, absAB;  // rotation A -> B
-  Vec3 tAB;
+  Mat3 rAB, absAB;  // A -> B: the true inverse of rBA (poses are orthonormal only to 1e-6,
+  Vec3 tAB;         // so the transpose could misplace a box by more than the slack)
+  Mat3 rBAt, rABt;  // transposes, for projecting a normal onto the other box's axes
   double slack = 0.0;  // absolute overlap tolerance: rounding of the transform, never less
 
   /// A point of B's local frame in A's local frame.
@@ -42,6 +43,7 @@ struct PairEstimate {
   bool overlap = false;
   double lower = 0.0;  // Eq. 3: the priority and the acceptance test
   double upper = 0.0;  // Pr[X >= 1]
+  double expected = 0.0;  // E[X] before rounding: bounds Pr[X >= 1] of a pair pruned by it
   int s = 0, sA = 0, sB = 0;
 };
 

@@ -13,11 +13,13 @@
 //     return the better-supported answer (see confidence below)
 //
 // Leaf pairs are never accepted on probability: the tree keeps triangles, so they are decided
-// exactly when popped. Confidence (docs/probability-model.md): P_lo = 1 - prod(1 - p) over the
-// accepted pairs (1 after an exact hit) is the model's lower bound that "collision" is right;
-// U = sum of Pr[X >= 1] over the queued pairs bounds the chance that any of them collides, so
-// 1 - min(1, U) is the confidence in "no collision". Each frontier is a cover of all unresolved
-// pairs, so the smallest U seen so far stays valid: both confidences only grow with budget.
+// exactly when popped. Confidence (docs/probability-model.md): for "collision", the largest p
+// of the accepted pairs (1 after an exact hit): the model's probability that one of them
+// really intersects, with no independence assumed between nested pairs. For "no collision",
+// 1 - min(1, U), with U the sum of Pr[X >= 1] over the queued pairs plus E[X] over the pairs
+// pruned so far: it bounds the chance that any unresolved pair collides. Each frontier is a
+// cover of all unresolved pairs, so the smallest U seen so far stays valid: both confidences
+// only grow with budget.
 #include "adb/core/query.h"
 
 #include <algorithm>
@@ -41,10 +43,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Entry = QueryScratchAccess::Entry;
 
-// The clock is read once per this many popped pairs (each evaluates up to 4 node pairs,
-// ~0.1 us each): a short query is not dominated by clock reads, and a budget overshoots by
-// a few microseconds at most.
-constexpr unsigned kClockInterval = 16;
+// The clock is read once this much work has been done since the last read, counting 4 per
+// popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: a short query is not
+// dominated by clock reads, and a budget overshoots by a few microseconds at most (plus one
+// leaf pair: at most 15 x 15 triangle tests, which are never interrupted).
+constexpr unsigned kClockInterval = 64;
 
 bool heapLess(const Entry& x, const Entry& y) { return x.p < y.p; }
 
@@ -77,14 +80,19 @@ class Traversal {
 
  private:
   // --- budgets -------------------------------------------------------------------------
-  // Checked before a pair is expanded (up to 4 evaluations), so nodePairs never exceeds the
-  // work budget and a pair is never half-expanded.
+  // Checked before a pair is expanded (up to 4 evaluations), so a pair is never
+  // half-expanded and nodePairs never exceeds max(1, budgetNodePairs): the roots' own test
+  // is always made.
   bool budgetLeft() {
     if (m_result.nodePairs + 4 > m_settings.budgetNodePairs) {
       m_result.stop = StopReason::WorkBudget;
       return false;
     }
-    if (m_timed && (m_iterations++ % kClockInterval) == 0) {
+    if (!m_timed) return true;
+    m_workSinceClock += 4;
+    if (m_workSinceClock >= kClockInterval || m_firstCheck) {
+      m_workSinceClock = 0;
+      m_firstCheck = false;
       const double us = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
       if (us >= m_settings.budgetMicros) {
         m_result.stop = StopReason::TimeBudget;
@@ -123,6 +131,7 @@ class Traversal {
       const Triangle& t = ta[na.firstTriangle() + i];
       for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
         ++m_result.triangleTests;
+        ++m_workSinceClock;
         if (!trianglesIntersect(va[t[0]], va[t[1]], va[t[2]], mapped[j][0], mapped[j][1],
                                 mapped[j][2])) {
           continue;
@@ -197,10 +206,11 @@ class Traversal {
 
   // --- ADB mode: the paper's priority traversal ----------------------------------------
   void push(const detail::PairEstimate& est, std::uint32_t a, std::uint32_t b, int da, int db) {
-    m_heap.push_back(Entry{static_cast<float>(est.lower), static_cast<float>(est.upper), a, b,
-                           static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)});
+    const Entry e{static_cast<float>(est.lower), static_cast<float>(est.upper), a, b,
+                  static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)};
+    m_heap.push_back(e);
     std::push_heap(m_heap.begin(), m_heap.end(), heapLess);
-    m_upperSum += est.upper;
+    m_upperSum += e.upper;  // the stored float, the same value the pop subtracts
   }
 
   void runAdb() {
@@ -212,7 +222,7 @@ class Traversal {
     }
     // The paper inserts the roots with probability 1: LB is 0 at depth 0, so Eq. 3 is 0.
     m_heap.push_back(Entry{1.0f, static_cast<float>(root.upper), 0, 0, 0, 0});
-    m_upperSum = root.upper;
+    m_upperSum = static_cast<float>(root.upper);
     m_minUpperSum = m_upperSum;
     while (!m_heap.empty()) {
       if (!budgetLeft()) {
@@ -224,9 +234,9 @@ class Traversal {
       m_heap.pop_back();
       m_upperSum -= e.upper;
       if (expandAdb(e)) return;
-      // Float drift must not make an empty frontier look doubtful, nor a sum negative.
+      // Rounding must not make an empty queue look doubtful, nor a sum negative.
       m_upperSum = m_heap.empty() ? 0.0 : std::max(0.0, m_upperSum);
-      m_minUpperSum = std::min(m_minUpperSum, m_upperSum);
+      m_minUpperSum = std::min(m_minUpperSum, m_upperSum + m_prunedMass);
     }
     finishUncertain(StopReason::Completed);
   }
@@ -254,18 +264,22 @@ class Traversal {
         ++m_result.nodePairs;
         const detail::PairEstimate est = detail::estimatePair(m_a, ca[i], da, m_b, cb[j], db,
                                                               m_frame);
-        if (!est.overlap || !(est.lower > 0.0)) continue;  // paper: insert only when p > 0
+        if (!est.overlap) continue;
+        if (!(est.lower > 0.0)) {  // paper: insert only when p > 0
+          m_prunedMass += est.expected;
+          continue;
+        }
         const bool leaves = m_a.tree->nodes()[ca[i]].isLeaf() && m_b.tree->nodes()[cb[j]].isLeaf();
         if (!leaves && est.lower > m_settings.pMin) {
           ++m_result.collisionPairs;
-          m_acceptedMiss *= 1.0 - est.lower;
+          m_bestAccepted = std::max(m_bestAccepted, est.lower);
           Witness w;
           w.nodeA = ca[i];
           w.nodeB = cb[j];
           w.probability = static_cast<float>(est.lower);
           addWitness(w);
           if (m_result.collisionPairs >= static_cast<std::uint32_t>(m_settings.kMin)) {
-            finish(true, 1.0 - m_acceptedMiss, StopReason::QualityReached);
+            finish(true, m_exactHit ? 1.0 : m_bestAccepted, StopReason::QualityReached);
             return true;
           }
         }
@@ -275,19 +289,19 @@ class Traversal {
     return false;
   }
 
-  // The answer when neither k_min nor an exact hit decided: the better-supported one.
+  // The answer when neither k_min nor an exact hit decided. The paper answers "no collision"
+  // when the queue runs out; a budget stop answers the same, with the doubt left in the
+  // queue (and in what was pruned) as its confidence, so a cut query says "no, but unsure".
+  // Accepted pairs below k_min are evidence the paper does not act on: they are not
+  // witnesses of a "no".
   void finishUncertain(StopReason why) {
     if (m_exactHit) {
       finish(true, 1.0, why);
       return;
     }
-    const double yes = 1.0 - m_acceptedMiss;
-    const double no = 1.0 - std::min(1.0, m_minUpperSum);
-    if (yes > no) {
-      finish(true, yes, why);
-    } else {
-      finish(false, no, why);
-    }
+    m_witnesses.clear();
+    m_result.witnessesDropped = 0;
+    finish(false, 1.0 - std::min(1.0, m_minUpperSum), why);
   }
 
   void finish(bool collides, double confidence, StopReason why) {
@@ -303,11 +317,13 @@ class Traversal {
   std::vector<Witness>& m_witnesses;
   Clock::time_point m_start;
   bool m_timed;
-  unsigned m_iterations = 0;
+  unsigned m_workSinceClock = 0;
+  bool m_firstCheck = true;  // the first check reads the clock: a zero budget stops at once
   QueryResult m_result;
   double m_upperSum = 0.0;
   double m_minUpperSum = 0.0;
-  double m_acceptedMiss = 1.0;  // prod (1 - p) over accepted pairs
+  double m_bestAccepted = 0.0;  // largest p of the accepted pairs
+  double m_prunedMass = 0.0;    // sum of E[X] over the pairs pruned for p = 0
   bool m_exactHit = false;
 };
 

@@ -25,6 +25,20 @@ void validate(const BuildSettings& s) {
   }
 }
 
+// The tree stores boxes and areas in float, in local coordinates: a mesh must fit well inside
+// float's range, with areas of its smallest triangles still normal floats.
+constexpr double kMinMeshExtent = 1e-12;
+constexpr double kMaxMeshExtent = 1e12;
+
+void validateExtent(const TriangleMesh& mesh) {
+  const double extent = mesh.bounds().extent().maxCoeff();
+  if (extent == 0.0) return;  // every vertex at one point: all degenerate, handled
+  if (extent < kMinMeshExtent || extent > kMaxMeshExtent) {
+    throw MeshError(mesh.name() + ": the mesh is " + std::to_string(extent) +
+                    " units across; an AdbTree supports 1e-12 to 1e12 (rescale the mesh)");
+  }
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -33,6 +47,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 
 AdbTree::AdbTree(const TriangleMesh& mesh, const BuildSettings& settings) : m_settings(settings) {
   validate(settings);
+  validateExtent(mesh);
   auto t0 = std::chrono::steady_clock::now();
   detail::buildHierarchy(*this, mesh, settings.maxLeafTriangles);
   detail::computeSurfaces(*this);

@@ -42,6 +42,7 @@ struct QuerySettings {
   /// Wall-clock budget in microseconds; infinity for none. 0 is valid: the roots only.
   double budgetMicros = std::numeric_limits<double>::infinity();
   /// Node pairs that may be evaluated (box test + probability); the reproducible budget.
+  /// The roots' own test is always made: nodePairs <= max(1, budgetNodePairs).
   std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
   /// Exact mode (and leaf pairs in ADB mode): stop at the first intersecting triangle pair.
   /// Off to collect every intersecting pair as witnesses (contact generation).
@@ -64,15 +65,15 @@ struct Witness {
 struct QueryResult {
   bool collides = false;
   /// Estimated probability that `collides` is right, in [0, 1]. See docs/probability-model.md:
-  /// for "collision", 1 - prod(1 - p) over the accepted collision pairs (1 after an exact hit);
-  /// for "no collision", 1 - min(1, sum of Pr[X >= 1] over the pairs still queued), with
-  /// pruned pairs counting 0 as the model says. Both only grow as a query runs longer.
+  /// for "collision", the largest p of the accepted collision pairs (1 after an exact hit);
+  /// for "no collision", 1 - min(1, the doubt left: Pr[X >= 1] summed over the pairs still
+  /// queued, E[X] over the pairs pruned). Both only grow as a query runs longer.
   double confidence = 0.0;
   StopReason stop = StopReason::Completed;
   std::uint64_t nodePairs = 0;       ///< node pairs evaluated (box test, probability)
   std::uint64_t triangleTests = 0;   ///< triangle-triangle tests run
   std::uint32_t collisionPairs = 0;  ///< pairs with p > pMin (the paper's k)
-  std::uint32_t witnessCount = 0;    ///< witnesses in QueryScratch::witnesses()
+  std::uint32_t witnessCount = 0;    ///< witnesses in QueryScratch::witnesses(); 0 for "no"
   std::uint32_t witnessesDropped = 0;
   double seconds = 0.0;              ///< wall clock of the query
 };

@@ -89,7 +89,9 @@ static_assert(sizeof(NodeDistribution) == 32, "NodeDistribution layout");
 
 class AdbTree {
  public:
-  /// Builds the hierarchy and its cell statistics. Throws SettingsError on bad settings.
+  /// Builds the hierarchy and its cell statistics. Throws SettingsError on bad settings and
+  /// MeshError for a mesh more than 1e12 or less than 1e-12 units across (boxes and areas
+  /// are stored in float).
   explicit AdbTree(const TriangleMesh& mesh, const BuildSettings& settings = {});
 
   const std::vector<Node>& nodes() const { return m_nodes; }
