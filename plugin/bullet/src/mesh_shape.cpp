@@ -1,0 +1,88 @@
+// MeshShape: the Bullet-facing shape over a shared ADB-tree.
+#include "adb/bullet/mesh_shape.h"
+
+#include <cmath>
+#include <string>
+
+#include "adb/core/box_query.h"
+
+namespace adb {
+namespace {
+
+btVector3 toBt(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
+                   static_cast<btScalar>(v.z()));
+}
+Vec3 fromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+
+}  // namespace
+
+std::shared_ptr<const MeshData> MeshData::build(TriangleMesh mesh, const BuildSettings& settings) {
+  AdbTree tree(mesh, settings);
+  MassProperties mass = computeMassProperties(mesh);
+  return std::make_shared<const MeshData>(MeshData{std::move(mesh), std::move(tree), mass});
+}
+
+MeshShape::MeshShape(std::shared_ptr<const MeshData> data) : m_data(std::move(data)) {
+  m_shapeType = CUSTOM_CONCAVE_SHAPE_TYPE;
+}
+
+void MeshShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const {
+  // The root box (local to the tree) moved to mesh coordinates, then to the world: the
+  // centre maps, the half extents map through |R|.
+  const Node& root = tree().root();
+  const Vec3 centre = 0.5 * (root.boxLo() + root.boxHi()) + tree().origin();
+  const btVector3 half = toBt(0.5 * (root.boxHi() - root.boxLo())) +
+                         btVector3(getMargin(), getMargin(), getMargin());
+  const btMatrix3x3 abs = t.getBasis().absolute();
+  const btVector3 c = t(toBt(centre));
+  const btVector3 e(abs[0].dot(half), abs[1].dot(half), abs[2].dot(half));
+  aabbMin = c - e;
+  aabbMax = c + e;
+}
+
+void MeshShape::setLocalScaling(const btVector3& scaling) {
+  const Vec3 s = fromBt(scaling);
+  if (!s.allFinite() || (s.array() <= 0.0).any()) {
+    throw SettingsError("MeshShape::setLocalScaling: the scaling must be positive and finite");
+  }
+  m_scaling = scaling;
+  if (s == Vec3::Ones()) {
+    m_scaled.reset();
+    return;
+  }
+  // A scaled mesh needs its own tree: boxes, slabs and cell counts all change with it.
+  std::vector<Vec3> v = m_data->mesh.vertices();
+  for (Vec3& x : v) x = x.cwiseProduct(s);
+  m_scaled = MeshData::build(TriangleMesh(std::move(v), m_data->mesh.triangles(),
+                                          m_data->mesh.name() + " (scaled)"),
+                             m_data->tree.settings());
+}
+
+void MeshShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const {
+  inertia = toBt(data().mass.principalMoments) * mass;
+}
+
+btTransform MeshShape::principalTransform() const {
+  const MassProperties& m = data().mass;
+  const Mat3& r = m.principalAxes;
+  const btMatrix3x3 basis(static_cast<btScalar>(r(0, 0)), static_cast<btScalar>(r(0, 1)),
+                          static_cast<btScalar>(r(0, 2)), static_cast<btScalar>(r(1, 0)),
+                          static_cast<btScalar>(r(1, 1)), static_cast<btScalar>(r(1, 2)),
+                          static_cast<btScalar>(r(2, 0)), static_cast<btScalar>(r(2, 1)),
+                          static_cast<btScalar>(r(2, 2)));
+  return btTransform(basis, toBt(m.centerOfMass));
+}
+
+void MeshShape::processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
+                                    const btVector3& aabbMax) const {
+  const AdbTree& t = tree();
+  const auto& verts = t.localVertices();
+  forEachTriangleNear(t, Aabb{fromBt(aabbMin), fromBt(aabbMax)}, [&](std::uint32_t i) {
+    btVector3 corners[3];
+    for (int k = 0; k < 3; ++k) corners[k] = toBt(verts[t.triangles()[i][k]] + t.origin());
+    callback->processTriangle(corners, 0, static_cast<int>(t.meshTriangle(i)));
+  });
+}
+
+}  // namespace adb
