@@ -115,10 +115,10 @@ TEST(MeshShape, InertiaOfABoxMatchesTheFormula) {
   MeshShape shape(data);
   btVector3 inertia;
   shape.calculateLocalInertia(12, inertia);
-  // Principal moments are ascending: the axes are z, y, x of the box.
-  EXPECT_NEAR(inertia[0], 20.0, 1e-4);
+  // In the shape's own axes (the box's axes are its principal axes).
+  EXPECT_NEAR(inertia[0], 52.0, 1e-4);
   EXPECT_NEAR(inertia[1], 40.0, 1e-4);
-  EXPECT_NEAR(inertia[2], 52.0, 1e-4);
+  EXPECT_NEAR(inertia[2], 20.0, 1e-4);
   EXPECT_NEAR(shape.principalTransform().getOrigin().length(), 0.0, 1e-6);
 }
 

@@ -60,7 +60,10 @@ void MeshShape::setLocalScaling(const btVector3& scaling) {
 }
 
 void MeshShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const {
-  inertia = toBt(data().mass.principalMoments) * mass;
+  // Bullet reads the result as the diagonal of the inertia tensor in the shape's frame: exact
+  // when that frame is the principal frame (see principalTransform), the best diagonal
+  // otherwise.
+  inertia = toBt(data().mass.inertia.diagonal()) * mass;
 }
 
 btTransform MeshShape::principalTransform() const {

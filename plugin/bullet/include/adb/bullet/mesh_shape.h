@@ -45,9 +45,11 @@ class MeshShape : public btConcaveShape {
   /// other than (1, 1, 1) builds this shape's own scaled tree once: the shared one stays.
   void setLocalScaling(const btVector3& scaling) override;
   const btVector3& getLocalScaling() const override { return m_scaling; }
-  /// Inertia of a body of this mass about the centre of mass, along the principal axes (see
-  /// principalTransform: Bullet's rigid bodies assume both coincide with the shape's frame).
-  /// Closed meshes integrate their volume; open ones are treated as thin shells.
+  /// The diagonal of the inertia tensor of a body of this mass about its centre of mass, in
+  /// the shape's axes. Bullet's rigid bodies assume the shape's frame is the principal frame
+  /// (centre of mass at the origin, diagonal tensor); where it is not, put the shape in a
+  /// btCompoundShape at principalTransform().inverse(). Closed meshes integrate their
+  /// volume; open ones are treated as thin shells.
   void calculateLocalInertia(btScalar mass, btVector3& inertia) const override;
   const char* getName() const override { return "AdbMesh"; }
 

@@ -1,0 +1,55 @@
+// MeshMeshAlgorithm: Bullet's collision algorithm for a pair of MeshShapes, and the one call
+// that registers adb with a dispatcher.
+//
+// This first version answers each pair on its own with the tree's exact mode and turns the
+// intersecting triangle pairs into contacts (adb/core/triangle_contact.h); the frame budget
+// across all pairs and plausible contacts from probabilistic witnesses come next (issue 3).
+#pragma once
+
+#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+
+#include "adb/bullet/precision.h"
+#include "adb/core/query.h"
+
+namespace adb {
+
+class MeshMeshAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  MeshMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                    const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
+  ~MeshMeshAlgorithm() override;
+
+  void processCollision(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                        btManifoldResult* result) override;
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return 1;  // no continuous collision detection for meshes
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override;
+
+  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* body0,
+                                                   const btCollisionObjectWrapper* body1) override;
+  };
+
+ private:
+  btPersistentManifold* m_manifold = nullptr;
+  QueryScratch m_scratch;  // grows to this pair's largest query, then stays
+};
+
+/// Bytes a dispatcher's algorithm pool must hold per element for adb's algorithms: pass it
+/// as btDefaultCollisionConstructionInfo::m_customCollisionAlgorithmMaxElementSize.
+std::size_t algorithmPoolElementSize();
+
+/// Registers MeshMeshAlgorithm for MeshShape pairs with `dispatcher`, for contact points and
+/// for closest points (so contactTest and contactPairTest work). Throws SettingsError when
+/// the configuration's algorithm pool is too small (see algorithmPoolElementSize()).
+void registerAlgorithms(btCollisionDispatcher& dispatcher,
+                        btDefaultCollisionConfiguration& configuration);
+
+}  // namespace adb

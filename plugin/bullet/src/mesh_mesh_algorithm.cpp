@@ -1,0 +1,130 @@
+// MeshMeshAlgorithm: exact contacts between two MeshShapes.
+#include "adb/bullet/mesh_mesh_algorithm.h"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <LinearMath/btPoolAllocator.h>
+
+#include <string>
+
+#include "adb/bullet/mesh_shape.h"
+#include "adb/core/triangle_contact.h"
+
+namespace adb {
+namespace {
+
+// Triangle pairs turned into contacts per pair and step at most: the manifold keeps 4 points
+// (Bullet's reduction picks the widest), so more would cost without changing the result much.
+constexpr std::uint32_t kMaxContactPairs = 64;
+
+Pose toPose(const btTransform& t) {
+  Pose p;
+  const btMatrix3x3& b = t.getBasis();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) p.rotation(r, c) = b[r][c];
+  }
+  p.translation = Vec3(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z());
+  return p;
+}
+
+btVector3 toBt(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
+                   static_cast<btScalar>(v.z()));
+}
+
+// A tree-order triangle of a posed tree, in world coordinates.
+void worldTriangle(const AdbTree& tree, const Pose& pose, std::uint32_t t, Vec3 out[3]) {
+  for (int k = 0; k < 3; ++k) {
+    out[k] = pose.rotation * (tree.localVertices()[tree.triangles()[t][k]] + tree.origin()) +
+             pose.translation;
+  }
+}
+
+}  // namespace
+
+MeshMeshAlgorithm::MeshMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                     const btCollisionObjectWrapper* body0,
+                                     const btCollisionObjectWrapper* body1)
+    : btActivatingCollisionAlgorithm(ci, body0, body1) {}
+
+MeshMeshAlgorithm::~MeshMeshAlgorithm() {
+  if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
+}
+
+void MeshMeshAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  if (m_manifold) manifolds.push_back(m_manifold);
+}
+
+void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                         const btCollisionObjectWrapper* body1,
+                                         const btDispatcherInfo&, btManifoldResult* result) {
+  if (!m_manifold) {
+    m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
+                                               body1->getCollisionObject());
+  }
+  result->setPersistentManifold(m_manifold);
+  const auto* shape0 = static_cast<const MeshShape*>(body0->getCollisionShape());
+  const auto* shape1 = static_cast<const MeshShape*>(body1->getCollisionShape());
+  const Pose pose0 = toPose(body0->getWorldTransform());
+  const Pose pose1 = toPose(body1->getWorldTransform());
+
+  QuerySettings settings;
+  settings.mode = QueryMode::Exact;
+  settings.stopAtFirstHit = false;
+  settings.maxWitnesses = kMaxContactPairs;
+  collide(shape0->tree(), pose0, shape1->tree(), pose1, settings, m_scratch);
+
+  // Normals are oriented from body 0 towards body 1 by the centres of their boxes: a stable
+  // hint for the tie-breaks of triangleContact, frame after frame.
+  btVector3 lo0, hi0, lo1, hi1;
+  shape0->getAabb(body0->getWorldTransform(), lo0, hi0);
+  shape1->getAabb(body1->getWorldTransform(), lo1, hi1);
+  const btVector3 towards1 = 0.5 * ((lo1 + hi1) - (lo0 + hi0));
+  const Vec3 hint(towards1.x(), towards1.y(), towards1.z());
+
+  for (const Witness& w : m_scratch.witnesses()) {
+    if (!w.isExact()) continue;
+    Vec3 a[3], b[3];
+    worldTriangle(shape0->tree(), pose0, w.triangleA, a);
+    worldTriangle(shape1->tree(), pose1, w.triangleB, b);
+    const TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
+    if (!c.valid) continue;
+    // Bullet: the normal on B points from body 1 towards body 0, the point lies on body 1,
+    // and a negative distance is a penetration.
+    result->addContactPoint(toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth));
+  }
+  result->refreshContactPoints();
+}
+
+btCollisionAlgorithm* MeshMeshAlgorithm::CreateFunc::CreateCollisionAlgorithm(
+    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+    const btCollisionObjectWrapper* body1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshMeshAlgorithm));
+  return new (memory) MeshMeshAlgorithm(ci, body0, body1);
+}
+
+std::size_t algorithmPoolElementSize() { return sizeof(MeshMeshAlgorithm); }
+
+void registerAlgorithms(btCollisionDispatcher& dispatcher,
+                        btDefaultCollisionConfiguration& configuration) {
+  // Bullet's pool allocator checks the requested size against its element size only with a
+  // debug assert: in a release build an algorithm larger than an element overruns it.
+  // Refuse at registration instead.
+  const int element = configuration.getCollisionAlgorithmPool()->getElementSize();
+  if (element < static_cast<int>(algorithmPoolElementSize())) {
+    throw SettingsError(
+        "adb::registerAlgorithms: the collision algorithm pool holds " +
+        std::to_string(element) + " bytes per algorithm, MeshMeshAlgorithm needs " +
+        std::to_string(algorithmPoolElementSize()) +
+        ": set btDefaultCollisionConstructionInfo::m_customCollisionAlgorithmMaxElementSize "
+        "to adb::algorithmPoolElementSize()");
+  }
+  // Function objects live as long as the program: dispatchers keep raw pointers to them.
+  static MeshMeshAlgorithm::CreateFunc createMeshMesh;
+  dispatcher.registerCollisionCreateFunc(CUSTOM_CONCAVE_SHAPE_TYPE, CUSTOM_CONCAVE_SHAPE_TYPE,
+                                         &createMeshMesh);
+  dispatcher.registerClosestPointsCreateFunc(CUSTOM_CONCAVE_SHAPE_TYPE,
+                                             CUSTOM_CONCAVE_SHAPE_TYPE, &createMeshMesh);
+}
+
+}  // namespace adb
