@@ -1,5 +1,5 @@
 # Thin wrapper over the CMake presets. The two commands a user needs:
-#   make demo   build and run the demo (installs missing system packages first)
+#   make demo   build and run the pile-scene demo (installs missing system packages first)
 #   make test   build and run the test suite
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
@@ -15,8 +15,9 @@ build: deps
 	cmake --preset release
 	cmake --build --preset release -j $(JOBS)
 
+# The main job: the pile scene with adb's shapes (see build/bin/adb-demo --help).
 demo: build
-	./build/bin/adb-core-demo
+	./build/bin/adb-demo --out build/demo
 
 test: build
 	ctest --preset release -j $(JOBS)

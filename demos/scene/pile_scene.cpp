@@ -1,0 +1,212 @@
+// PileScene: builds the bin and the bodies for either backend and measures each step.
+#include "pile_scene.h"
+
+#include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
+#include <BulletCollision/Gimpact/btGImpactShape.h>
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "adb/bullet/mesh_shape.h"
+#include "adb/core/benchmark_poses.h"
+#include "adb/core/mass_properties.h"
+#include "adb/core/mesh_generators.h"
+
+namespace adb::demo {
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kFloorTop = 0.0;
+
+btVector3 toBt(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
+                   static_cast<btScalar>(v.z()));
+}
+
+// The mesh moved into its principal frame: Bullet's bodies assume the shape's origin is the
+// centre of mass and its axes the principal axes.
+TriangleMesh principalFrame(const TriangleMesh& mesh) {
+  const MassProperties m = computeMassProperties(mesh);
+  const Mat3 rt = m.principalAxes.transpose();
+  return gen::transformed(mesh, Pose{rt, -(rt * m.centerOfMass)});
+}
+
+// The three kinds of body, at about `triangles` triangles each, ~0.8 units across.
+std::vector<TriangleMesh> bodyMeshes(std::size_t triangles) {
+  const double t = static_cast<double>(triangles);
+  const int ring = std::max(6, static_cast<int>(std::sqrt(t / 4.0)));
+  const int tooth = std::max(4, static_cast<int>(t / 80.0));
+  const int along = std::max(24, static_cast<int>(t / 16.0));
+  return {principalFrame(gen::makeTorus(0.35, 0.12, 2 * ring, ring)),
+          principalFrame(gen::makeGear(10, 0.4, 0.32, 0.15, 0.15, tooth)),
+          principalFrame(gen::makeTorusKnot(2, 3, 0.3, 0.045, along, 8))};
+}
+
+struct Box {
+  Vec3 half, centre;
+};
+
+// The bin: a floor whose top is y = 0 and four walls.
+const Box kBin[] = {{Vec3(2.5, 0.25, 2.5), Vec3(0, -0.25, 0)},
+                    {Vec3(0.25, 1.5, 2.5), Vec3(2.75, 1.25, 0)},
+                    {Vec3(0.25, 1.5, 2.5), Vec3(-2.75, 1.25, 0)},
+                    {Vec3(2.5, 1.5, 0.25), Vec3(0, 1.25, 2.75)},
+                    {Vec3(2.5, 1.5, 0.25), Vec3(0, 1.25, -2.75)}};
+
+// Bullet's GImpact and BVH shapes read the mesh through a striding interface that must outlive
+// them: this keeps the arrays.
+struct IndexedMesh {
+  std::vector<btScalar> vertices;
+  std::vector<int> indices;
+  std::unique_ptr<btTriangleIndexVertexArray> array;
+
+  explicit IndexedMesh(const TriangleMesh& mesh) {
+    for (const Vec3& v : mesh.vertices()) {
+      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<btScalar>(v[k]));
+    }
+    for (const Triangle& t : mesh.triangles()) {
+      for (std::uint32_t i : t) indices.push_back(static_cast<int>(i));
+    }
+    array = std::make_unique<btTriangleIndexVertexArray>(
+        static_cast<int>(mesh.triangleCount()), indices.data(), 3 * static_cast<int>(sizeof(int)),
+        static_cast<int>(mesh.vertices().size()), vertices.data(),
+        3 * static_cast<int>(sizeof(btScalar)));
+  }
+};
+
+}  // namespace
+
+struct PileScene::Impl {
+  std::unique_ptr<btDefaultCollisionConfiguration> configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  std::unique_ptr<btDiscreteDynamicsWorld> world;
+  std::vector<std::unique_ptr<IndexedMesh>> indexed;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<Vec3> localInertia;  // per dynamic body, unit mass
+
+  ~Impl() {
+    for (auto& b : bodies) world->removeRigidBody(b.get());
+  }
+
+  btRigidBody* addBody(btCollisionShape* shape, double mass, const Vec3& inertia,
+                       const btTransform& at) {
+    btRigidBody::btRigidBodyConstructionInfo ci(static_cast<btScalar>(mass), nullptr, shape,
+                                                toBt(inertia * mass));
+    ci.m_startWorldTransform = at;
+    ci.m_friction = btScalar(0.6);
+    bodies.push_back(std::make_unique<btRigidBody>(ci));
+    world->addRigidBody(bodies.back().get());
+    return bodies.back().get();
+  }
+
+  // A shape of this scene's backend for `mesh`; `dynamic` picks GImpact over a static BVH.
+  btCollisionShape* makeShape(const std::shared_ptr<const MeshData>& data, bool adb,
+                              bool dynamic) {
+    if (adb) {
+      shapes.push_back(std::make_unique<MeshShape>(data));
+      return shapes.back().get();
+    }
+    indexed.push_back(std::make_unique<IndexedMesh>(data->mesh));
+    if (dynamic) {
+      auto gimpact = std::make_unique<btGImpactMeshShape>(indexed.back()->array.get());
+      gimpact->updateBound();
+      shapes.push_back(std::move(gimpact));
+    } else {
+      shapes.push_back(std::make_unique<btBvhTriangleMeshShape>(indexed.back()->array.get(), true));
+    }
+    return shapes.back().get();
+  }
+};
+
+PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Impl>()) {
+  Impl& s = *m_impl;
+  const bool adb = settings.backend == Backend::Adb;
+  btDefaultCollisionConstructionInfo info;
+  info.m_customCollisionAlgorithmMaxElementSize = static_cast<int>(algorithmPoolElementSize());
+  s.configuration = std::make_unique<btDefaultCollisionConfiguration>(info);
+  s.dispatcher = std::make_unique<btCollisionDispatcher>(s.configuration.get());
+  if (adb) {
+    registerAlgorithms(*s.dispatcher, *s.configuration);
+  } else {
+    btGImpactCollisionAlgorithm::registerAlgorithm(s.dispatcher.get());
+  }
+  s.world = std::make_unique<btDiscreteDynamicsWorld>(s.dispatcher.get(), &s.broadphase,
+                                                      &s.solver, s.configuration.get());
+  s.world->setGravity(btVector3(0, static_cast<btScalar>(-kGravity), 0));
+
+  for (const Box& b : kBin) {
+    const auto data = MeshData::build(gen::makeBox(b.half, 4));
+    btTransform at = btTransform::getIdentity();
+    at.setOrigin(toBt(b.centre));
+    s.addBody(s.makeShape(data, adb, false), 0.0, Vec3::Zero(), at);
+  }
+
+  std::vector<std::shared_ptr<const MeshData>> kinds;
+  for (TriangleMesh& mesh : bodyMeshes(settings.trianglesPerBody)) {
+    kinds.push_back(MeshData::build(std::move(mesh)));
+  }
+  std::vector<btCollisionShape*> kindShapes;  // GImpact shapes are shared between bodies too
+  for (const auto& k : kinds) kindShapes.push_back(s.makeShape(k, adb, true));
+
+  std::mt19937_64 rng(settings.seed);
+  std::uniform_real_distribution<double> jitter(-0.1, 0.1);
+  for (int i = 0; i < settings.bodies; ++i) {
+    const int kind = i % 3;
+    // A 3 x 3 grid per layer, 0.9 apart, layers 0.9 apart, from 1 unit above the floor.
+    const int layer = i / 9, cell = i % 9;
+    const Vec3 at(-0.9 + 0.9 * (cell % 3) + jitter(rng), 1.0 + 0.9 * layer,
+                  -0.9 + 0.9 * (cell / 3) + jitter(rng));
+    const Eigen::Quaterniond q = randomRotation(rng);
+    const btTransform pose(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
+                                        static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
+                           toBt(at));
+    btCollisionShape* shape = adb ? s.makeShape(kinds[kind], true, true) : kindShapes[kind];
+    const Vec3 inertia = kinds[kind]->mass.inertia.diagonal();
+    m_dynamic.push_back(s.addBody(shape, 1.0, inertia, pose));
+    m_dynamic.back()->setActivationState(DISABLE_DEACTIVATION);  // measure every step
+    s.localInertia.push_back(inertia);
+    m_triangles += kinds[kind]->mesh.triangleCount();
+  }
+}
+
+PileScene::~PileScene() = default;
+
+StepStats PileScene::step() {
+  Impl& s = *m_impl;
+  StepStats st;
+  const auto t0 = std::chrono::steady_clock::now();
+  s.world->stepSimulation(btScalar(1.0 / 60.0), 1, btScalar(1.0 / 60.0));
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  for (int m = 0; m < s.dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = s.dispatcher->getManifoldByIndexInternal(m);
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      ++st.contacts;
+      st.maxPenetration =
+          std::max(st.maxPenetration, -static_cast<double>(manifold->getContactPoint(p).getDistance()));
+    }
+  }
+  st.lowestY = 1e300;
+  for (std::size_t i = 0; i < m_dynamic.size(); ++i) {
+    const btRigidBody* b = m_dynamic[i];
+    const btVector3 v = b->getLinearVelocity();
+    const btVector3 w = b->getWorldTransform().getBasis().transpose() * b->getAngularVelocity();
+    const Vec3& inertia = s.localInertia[i];
+    const double kinetic = 0.5 * v.length2() + 0.5 * (inertia.x() * w.x() * w.x() +
+                                                      inertia.y() * w.y() * w.y() +
+                                                      inertia.z() * w.z() * w.z());
+    const double y = b->getWorldTransform().getOrigin().y();
+    st.kinetic += kinetic;
+    st.energy += kinetic + kGravity * (y - kFloorTop);
+    st.atRest += v.length() < 0.05 && b->getAngularVelocity().length() < 0.05 ? 1 : 0;
+    st.lowestY = std::min(st.lowestY, y);
+  }
+  return st;
+}
+
+}  // namespace adb::demo
