@@ -20,6 +20,8 @@
 // overflows (every product has degree <= 2 in coordinates bounded by 2).
 #include "adb/core/triangle_contact.h"
 
+#include "segment_closest_points.h"
+
 #include <cmath>
 #include <limits>
 
@@ -76,7 +78,6 @@ constexpr double kDistanceNoise = 1024 * kUnitRoundoff;
 
 inline double minOf(double a, double b) { return b < a ? b : a; }
 inline double maxOf(double a, double b) { return a < b ? b : a; }
-inline double clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
 
 using Tri = Vec3[3];
 
@@ -222,39 +223,6 @@ Vec3 deepestMean(const Vec3* p, int count, const Vec3& d, bool largest, double b
   return weights > 0 ? Vec3(sum / weights) : p[0];  // the extreme point has weight 1
 }
 
-/// Closest points of closed segments p1q1 and p2q2 (Ericson, Real-Time Collision Detection
-/// 5.1.9); every division guarded, parallel and point cases included.
-void closestSegmentPoints(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, Vec3& c1,
-                          Vec3& c2) {
-  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 0 && e <= 0) {
-    // both points
-  } else if (a <= 0) {
-    t = clamp01(f / e);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 0) {
-      s = clamp01(-c / a);
-    } else {
-      const double b = d1.dot(d2);
-      const double denom = a * e - b * b;
-      s = denom > 0 ? clamp01((b * f - c * e) / denom) : 0.0;  // parallel: start at p1
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = clamp01(-c / a);
-      } else if (t > 1) {
-        t = 1;
-        s = clamp01((b - c) / a);
-      }
-    }
-  }
-  c1 = p1 + s * d1;
-  c2 = p2 + t * d2;
-}
-
 /// The supporting feature of t along d (largest projections when `largest`, else smallest) as
 /// a segment: one vertex (p == q), an edge, or the two farthest vertices when all three are
 /// within the band (a degenerate triangle).
@@ -323,7 +291,7 @@ LocalContact contactLocal(const Tri& a, const Tri& b, const Vec3* hint, double s
     Vec3 pa, qa, pb, qb, ca, cb;
     longestEdge(a, pa, qa);
     longestEdge(b, pb, qb);
-    closestSegmentPoints(pa, qa, pb, qb, ca, cb);
+    detail::closestSegmentPoints(pa, qa, pb, qb, ca, cb);
     const Vec3 gap = cb - ca;
     const double dist = gap.norm();
     Vec3 d;
@@ -386,7 +354,7 @@ LocalContact contactLocal(const Tri& a, const Tri& b, const Vec3* hint, double s
     Vec3 pa, qa, pb, qb, ca, cb;
     supportSegment(a, win.dir, true, kFeatureBand * scale, pa, qa);
     supportSegment(b, win.dir, false, kFeatureBand * scale, pb, qb);
-    closestSegmentPoints(pa, qa, pb, qb, ca, cb);
+    detail::closestSegmentPoints(pa, qa, pb, qb, ca, cb);
     out.pointOnB = cb;
   }
   return out;

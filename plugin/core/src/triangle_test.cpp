@@ -12,6 +12,8 @@
 // rounding error (~1e-15 L |edge|) is far below the eps * |edge| tolerance.
 #include "adb/core/triangle_test.h"
 
+#include "segment_closest_points.h"
+
 #include <cmath>
 #include <utility>
 
@@ -198,39 +200,12 @@ bool segmentMeetsTriangle(const Vec3& p, const Vec3& q, double dp, double dq, do
   return !allOnOneSide(f0, f1, f2, tol);
 }
 
-inline double clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
 
-/// Squared distance between closed segments p1q1 and p2q2 (Ericson, Real-Time Collision
-/// Detection 5.1.9), every division guarded; inf quotients are clamped, never NaN.
+/// Squared distance between closed segments p1q1 and p2q2.
 double segmentSegmentDistanceSq(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
-  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 0 && e <= 0) {
-    // both points
-  } else if (a <= 0) {
-    t = clamp01(f / e);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 0) {
-      s = clamp01(-c / a);
-    } else {
-      const double b = d1.dot(d2);
-      const double denom = a * e - b * b;
-      // Parallel (denom 0, or negative by rounding): any s works, start at 0 and let the
-      // clamping below pick the closest pair.
-      s = denom > 0 ? clamp01((b * f - c * e) / denom) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = clamp01(-c / a);
-      } else if (t > 1) {
-        t = 1;
-        s = clamp01((b - c) / a);
-      }
-    }
-  }
-  return ((p1 + s * d1) - (p2 + t * d2)).squaredNorm();
+  Vec3 c1, c2;
+  detail::closestSegmentPoints(p1, q1, p2, q2, c1, c2);
+  return (c1 - c2).squaredNorm();
 }
 
 /// Index k of the longest edge (v[k], v[k+1]) and its squared length.
