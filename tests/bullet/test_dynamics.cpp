@@ -40,7 +40,10 @@ struct World {
   }
 
   btRigidBody* add(std::shared_ptr<const MeshData> data, btScalar mass, const btVector3& at) {
-    auto shape = std::make_unique<MeshShape>(std::move(data));
+    return add(std::make_unique<MeshShape>(std::move(data)), mass, at);
+  }
+
+  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, btScalar mass, const btVector3& at) {
     btVector3 inertia(0, 0, 0);
     if (mass > 0) shape->calculateLocalInertia(mass, inertia);
     btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape.get(), inertia);
@@ -68,6 +71,24 @@ TEST(Dynamics, TorusDroppedOnAMeshGroundComesToRest) {
   // Tolerance: 10 % of the tube radius for penetration and solver slop.
   EXPECT_NEAR(p.y(), 0.2, 0.02) << "final height";
   EXPECT_LT(body->getLinearVelocity().length(), 0.05);
+}
+
+TEST(Dynamics, ConvexShapesRestOnAMeshGround) {
+  // A box (half 0.3) and a sphere (radius 0.25) dropped on a mesh ground: the algorithm for
+  // MeshShape vs convex shapes (Bullet's own default would take the mesh for an SDF shape).
+  World w;
+  w.add(MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4)), 0, btVector3(0, -0.5, 0));
+  btRigidBody* box = w.add(std::make_unique<btBoxShape>(btVector3(btScalar(0.3), btScalar(0.3),
+                                                                  btScalar(0.3))),
+                           1, btVector3(-1, 1, 0));
+  btRigidBody* ball = w.add(std::make_unique<btSphereShape>(btScalar(0.25)), 1, btVector3(1, 1, 0));
+  for (int step = 0; step < 240; ++step) {
+    w.world->stepSimulation(btScalar(1.0 / 60), 1, btScalar(1.0 / 60));
+  }
+  // Resting heights, within 5 % of the size: solver slop and the 0.04 collision margins.
+  EXPECT_NEAR(box->getWorldTransform().getOrigin().y(), 0.3, 0.03);
+  EXPECT_NEAR(ball->getWorldTransform().getOrigin().y(), 0.25, 0.03);
+  EXPECT_LT(box->getLinearVelocity().length(), 0.05);
 }
 
 TEST(Dynamics, ContactPairTestReportsContacts) {

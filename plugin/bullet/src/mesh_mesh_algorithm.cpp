@@ -5,8 +5,10 @@
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <LinearMath/btPoolAllocator.h>
 
+#include <algorithm>
 #include <string>
 
+#include "adb/bullet/mesh_convex_algorithm.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/triangle_contact.h"
 
@@ -103,7 +105,9 @@ btCollisionAlgorithm* MeshMeshAlgorithm::CreateFunc::CreateCollisionAlgorithm(
   return new (memory) MeshMeshAlgorithm(ci, body0, body1);
 }
 
-std::size_t algorithmPoolElementSize() { return sizeof(MeshMeshAlgorithm); }
+std::size_t algorithmPoolElementSize() {
+  return std::max(sizeof(MeshMeshAlgorithm), sizeof(MeshConvexAlgorithm));
+}
 
 void registerAlgorithms(btCollisionDispatcher& dispatcher,
                         btDefaultCollisionConfiguration& configuration) {
@@ -121,10 +125,22 @@ void registerAlgorithms(btCollisionDispatcher& dispatcher,
   }
   // Function objects live as long as the program: dispatchers keep raw pointers to them.
   static MeshMeshAlgorithm::CreateFunc createMeshMesh;
-  dispatcher.registerCollisionCreateFunc(CUSTOM_CONCAVE_SHAPE_TYPE, CUSTOM_CONCAVE_SHAPE_TYPE,
-                                         &createMeshMesh);
-  dispatcher.registerClosestPointsCreateFunc(CUSTOM_CONCAVE_SHAPE_TYPE,
-                                             CUSTOM_CONCAVE_SHAPE_TYPE, &createMeshMesh);
+  static MeshConvexAlgorithm::CreateFunc createConvexMesh;
+  static MeshConvexAlgorithm::CreateFunc createMeshConvex = [] {
+    MeshConvexAlgorithm::CreateFunc f;
+    f.m_swapped = true;  // Bullet's flag: body0 is the mesh
+    return f;
+  }();
+  const auto both = [&](int t0, int t1, btCollisionAlgorithmCreateFunc* f) {
+    dispatcher.registerCollisionCreateFunc(t0, t1, f);
+    dispatcher.registerClosestPointsCreateFunc(t0, t1, f);
+  };
+  both(CUSTOM_CONCAVE_SHAPE_TYPE, CUSTOM_CONCAVE_SHAPE_TYPE, &createMeshMesh);
+  // Every convex type, both orders: Bullet's default would take MeshShape for an SDF shape.
+  for (int t = 0; t < CONCAVE_SHAPES_START_HERE; ++t) {
+    both(t, CUSTOM_CONCAVE_SHAPE_TYPE, &createConvexMesh);
+    both(CUSTOM_CONCAVE_SHAPE_TYPE, t, &createMeshConvex);
+  }
 }
 
 }  // namespace adb
