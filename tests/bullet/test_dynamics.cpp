@@ -91,6 +91,26 @@ TEST(Dynamics, ConvexShapesRestOnAMeshGround) {
   EXPECT_LT(box->getLinearVelocity().length(), 0.05);
 }
 
+TEST(Dynamics, TorusDroppedOnAStaticPlaneComesToRest) {
+  World w;
+  w.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), btScalar(0)), 0,
+        btVector3(0, 0, 0));
+  const TriangleMesh torus = gen::transformed(
+      gen::makeTorus(0.5, 0.2, 32, 16),
+      Pose{Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()});
+  // Dropped tilted, so it lands on an edge and has to settle flat.
+  btRigidBody* body = w.add(MeshData::build(torus), 1, btVector3(0, 1.0, 0));
+  btTransform tilted = body->getWorldTransform();
+  tilted.setRotation(btQuaternion(btVector3(1, 0, 0), btScalar(0.4)));
+  body->setWorldTransform(tilted);
+  for (int step = 0; step < 300; ++step) {
+    w.world->stepSimulation(btScalar(1.0 / 60), 1, btScalar(1.0 / 60));
+  }
+  // Flat on the plane: the centre at the tube radius (+-10 %), at rest.
+  EXPECT_NEAR(body->getWorldTransform().getOrigin().y(), 0.2, 0.02);
+  EXPECT_LT(body->getLinearVelocity().length(), 0.05);
+}
+
 TEST(Dynamics, ContactPairTestReportsContacts) {
   World w;
   const auto box = MeshData::build(gen::makeBox(Vec3(0.5, 0.5, 0.5), 2));

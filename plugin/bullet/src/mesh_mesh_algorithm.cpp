@@ -9,6 +9,7 @@
 #include <string>
 
 #include "adb/bullet/mesh_convex_algorithm.h"
+#include "adb/bullet/mesh_plane_algorithm.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/triangle_contact.h"
 
@@ -106,7 +107,8 @@ btCollisionAlgorithm* MeshMeshAlgorithm::CreateFunc::CreateCollisionAlgorithm(
 }
 
 std::size_t algorithmPoolElementSize() {
-  return std::max(sizeof(MeshMeshAlgorithm), sizeof(MeshConvexAlgorithm));
+  return std::max({sizeof(MeshMeshAlgorithm), sizeof(MeshConvexAlgorithm),
+                   sizeof(MeshPlaneAlgorithm)});
 }
 
 void registerAlgorithms(btCollisionDispatcher& dispatcher,
@@ -136,6 +138,14 @@ void registerAlgorithms(btCollisionDispatcher& dispatcher,
     dispatcher.registerClosestPointsCreateFunc(t0, t1, f);
   };
   both(CUSTOM_CONCAVE_SHAPE_TYPE, CUSTOM_CONCAVE_SHAPE_TYPE, &createMeshMesh);
+  static MeshPlaneAlgorithm::CreateFunc createMeshPlane;
+  static MeshPlaneAlgorithm::CreateFunc createPlaneMesh = [] {
+    MeshPlaneAlgorithm::CreateFunc f;
+    f.m_swapped = true;  // body0 is the plane
+    return f;
+  }();
+  both(CUSTOM_CONCAVE_SHAPE_TYPE, STATIC_PLANE_PROXYTYPE, &createMeshPlane);
+  both(STATIC_PLANE_PROXYTYPE, CUSTOM_CONCAVE_SHAPE_TYPE, &createPlaneMesh);
   // Every convex type, both orders: Bullet's default would take MeshShape for an SDF shape.
   for (int t = 0; t < CONCAVE_SHAPES_START_HERE; ++t) {
     both(t, CUSTOM_CONCAVE_SHAPE_TYPE, &createConvexMesh);

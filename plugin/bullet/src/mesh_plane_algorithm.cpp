@@ -1,0 +1,102 @@
+// MeshPlaneAlgorithm: mesh vertices against a static plane, pruned by the tree's boxes.
+#include "adb/bullet/mesh_plane_algorithm.h"
+
+#include <BulletCollision/BroadphaseCollision/btDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+
+#include <cstdint>
+
+#include "adb/bullet/mesh_shape.h"
+
+namespace adb {
+namespace {
+
+// Candidate points handed to the manifold per step at most: it keeps 4 (the widest), and a
+// mesh lying flat on the plane offers every vertex of its face.
+constexpr int kMaxCandidates = 256;
+
+}  // namespace
+
+MeshPlaneAlgorithm::MeshPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                       const btCollisionObjectWrapper* body0,
+                                       const btCollisionObjectWrapper* body1, bool swapped)
+    : btActivatingCollisionAlgorithm(ci, body0, body1), m_swapped(swapped) {}
+
+MeshPlaneAlgorithm::~MeshPlaneAlgorithm() {
+  if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
+}
+
+void MeshPlaneAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
+  if (m_manifold) manifolds.push_back(m_manifold);
+}
+
+void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                          const btCollisionObjectWrapper* body1,
+                                          const btDispatcherInfo&, btManifoldResult* result) {
+  if (!m_manifold) {
+    m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
+                                               body1->getCollisionObject());
+  }
+  result->setPersistentManifold(m_manifold);
+  const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
+  const btCollisionObjectWrapper* planeWrap = m_swapped ? body0 : body1;
+  const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
+  const auto* plane = static_cast<const btStaticPlaneShape*>(planeWrap->getCollisionShape());
+  const btTransform& meshPose = meshWrap->getWorldTransform();
+  const btTransform& planePose = planeWrap->getWorldTransform();
+
+  // The plane in the world, then in the tree's local frame: distance(x) = n . x + c.
+  const btVector3 nWorld = planePose.getBasis() * plane->getPlaneNormal();
+  const btScalar dWorld = nWorld.dot(planePose.getOrigin()) + plane->getPlaneConstant();
+  const btVector3 nLocalBt = meshPose.getBasis().transpose() * nWorld;
+  const AdbTree& tree = mesh->tree();
+  const Vec3 n(nLocalBt.x(), nLocalBt.y(), nLocalBt.z());
+  const double c = n.dot(tree.origin()) + nWorld.dot(meshPose.getOrigin()) - dWorld;
+  const double reach = m_manifold->getContactBreakingThreshold() + mesh->getMargin();
+
+  // Bullet's normal on body 1 points towards body 0.
+  const btVector3 normalOnB = m_swapped ? -nWorld : nWorld;
+  int candidates = 0;
+  std::uint32_t stack[64];  // at most one pending sibling per level of a <= 29-level tree
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0 && candidates < kMaxCandidates) {
+    const Node& node = tree.nodes()[stack[--top]];
+    const Vec3 centre = 0.5 * (node.boxLo() + node.boxHi());
+    const Vec3 half = 0.5 * (node.boxHi() - node.boxLo());
+    if (n.dot(centre) - n.cwiseAbs().dot(half) + c > reach) continue;  // all above the plane
+    if (!node.isLeaf()) {
+      stack[top++] = node.firstChild();
+      stack[top++] = node.firstChild() + 1;
+      continue;
+    }
+    for (std::uint32_t t = node.firstTriangle(); t < node.firstTriangle() + node.triangleCount();
+         ++t) {
+      for (std::uint32_t v : tree.triangles()[t]) {
+        const Vec3& x = tree.localVertices()[v];
+        const double distance = n.dot(x) + c;
+        if (distance > reach || candidates >= kMaxCandidates) continue;
+        const Vec3 m = x + tree.origin();
+        const btVector3 onMesh = meshPose(btVector3(static_cast<btScalar>(m.x()),
+                                                    static_cast<btScalar>(m.y()),
+                                                    static_cast<btScalar>(m.z())));
+        const btVector3 onPlane = onMesh - nWorld * static_cast<btScalar>(distance);
+        result->addContactPoint(normalOnB, m_swapped ? onMesh : onPlane,
+                                static_cast<btScalar>(distance));
+        ++candidates;
+      }
+    }
+  }
+  result->refreshContactPoints();
+}
+
+btCollisionAlgorithm* MeshPlaneAlgorithm::CreateFunc::CreateCollisionAlgorithm(
+    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+    const btCollisionObjectWrapper* body1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshPlaneAlgorithm));
+  return new (memory) MeshPlaneAlgorithm(ci, body0, body1, m_swapped);
+}
+
+}  // namespace adb
