@@ -111,6 +111,25 @@ TEST(Dynamics, TorusDroppedOnAStaticPlaneComesToRest) {
   EXPECT_LT(body->getLinearVelocity().length(), 0.05);
 }
 
+TEST(Dynamics, TorusDroppedOnABvhTriangleMeshGroundComesToRest) {
+  // The ground most Bullet users have: a static btBvhTriangleMeshShape, two triangles. The
+  // arrays it reads are declared first, so they outlive the world.
+  btScalar vertices[] = {-5, 0, -5, 5, 0, -5, 5, 0, 5, -5, 0, 5};
+  int indices[] = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from above
+  btTriangleIndexVertexArray array(2, indices, 3 * sizeof(int), 4, vertices, 3 * sizeof(btScalar));
+  World w;
+  w.add(std::make_unique<btBvhTriangleMeshShape>(&array, true), 0, btVector3(0, 0, 0));
+  const TriangleMesh torus = gen::transformed(
+      gen::makeTorus(0.5, 0.2, 32, 16),
+      Pose{Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()});
+  btRigidBody* body = w.add(MeshData::build(torus), 1, btVector3(0, 1.0, 0));
+  for (int step = 0; step < 240; ++step) {
+    w.world->stepSimulation(btScalar(1.0 / 60), 1, btScalar(1.0 / 60));
+  }
+  EXPECT_NEAR(body->getWorldTransform().getOrigin().y(), 0.2, 0.02);
+  EXPECT_LT(body->getLinearVelocity().length(), 0.05);
+}
+
 TEST(Dynamics, ContactPairTestReportsContacts) {
   World w;
   const auto box = MeshData::build(gen::makeBox(Vec3(0.5, 0.5, 0.5), 2));

@@ -8,40 +8,23 @@
 #include <algorithm>
 #include <string>
 
+#include "adb/bullet/mesh_concave_algorithm.h"
 #include "adb/bullet/mesh_convex_algorithm.h"
 #include "adb/bullet/mesh_plane_algorithm.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/triangle_contact.h"
+#include "conversions.h"
 
 namespace adb {
 namespace {
 
+using detail::toBt;
+using detail::toPose;
+using detail::worldTriangle;
+
 // Triangle pairs turned into contacts per pair and step at most: the manifold keeps 4 points
 // (Bullet's reduction picks the widest), so more would cost without changing the result much.
 constexpr std::uint32_t kMaxContactPairs = 64;
-
-Pose toPose(const btTransform& t) {
-  Pose p;
-  const btMatrix3x3& b = t.getBasis();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) p.rotation(r, c) = b[r][c];
-  }
-  p.translation = Vec3(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z());
-  return p;
-}
-
-btVector3 toBt(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-                   static_cast<btScalar>(v.z()));
-}
-
-// A tree-order triangle of a posed tree, in world coordinates.
-void worldTriangle(const AdbTree& tree, const Pose& pose, std::uint32_t t, Vec3 out[3]) {
-  for (int k = 0; k < 3; ++k) {
-    out[k] = pose.rotation * (tree.localVertices()[tree.triangles()[t][k]] + tree.origin()) +
-             pose.translation;
-  }
-}
 
 }  // namespace
 
@@ -108,7 +91,7 @@ btCollisionAlgorithm* MeshMeshAlgorithm::CreateFunc::CreateCollisionAlgorithm(
 
 std::size_t algorithmPoolElementSize() {
   return std::max({sizeof(MeshMeshAlgorithm), sizeof(MeshConvexAlgorithm),
-                   sizeof(MeshPlaneAlgorithm)});
+                   sizeof(MeshPlaneAlgorithm), sizeof(MeshConcaveAlgorithm)});
 }
 
 void registerAlgorithms(btCollisionDispatcher& dispatcher,
@@ -146,6 +129,18 @@ void registerAlgorithms(btCollisionDispatcher& dispatcher,
   }();
   both(CUSTOM_CONCAVE_SHAPE_TYPE, STATIC_PLANE_PROXYTYPE, &createMeshPlane);
   both(STATIC_PLANE_PROXYTYPE, CUSTOM_CONCAVE_SHAPE_TYPE, &createPlaneMesh);
+  // Every other concave type (triangle meshes, heightfields, GImpact, ...), both orders.
+  static MeshConcaveAlgorithm::CreateFunc createMeshConcave;
+  static MeshConcaveAlgorithm::CreateFunc createConcaveMesh = [] {
+    MeshConcaveAlgorithm::CreateFunc f;
+    f.m_swapped = true;  // body0 is the other concave shape
+    return f;
+  }();
+  for (int t = CONCAVE_SHAPES_START_HERE + 1; t < CUSTOM_CONCAVE_SHAPE_TYPE; ++t) {
+    if (t == STATIC_PLANE_PROXYTYPE) continue;
+    both(CUSTOM_CONCAVE_SHAPE_TYPE, t, &createMeshConcave);
+    both(t, CUSTOM_CONCAVE_SHAPE_TYPE, &createConcaveMesh);
+  }
   // Every convex type, both orders: Bullet's default would take MeshShape for an SDF shape.
   for (int t = 0; t < CONCAVE_SHAPES_START_HERE; ++t) {
     both(t, CUSTOM_CONCAVE_SHAPE_TYPE, &createConvexMesh);

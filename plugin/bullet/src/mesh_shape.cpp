@@ -5,15 +5,13 @@
 #include <string>
 
 #include "adb/core/box_query.h"
+#include "conversions.h"
 
 namespace adb {
 namespace {
 
-btVector3 toBt(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-                   static_cast<btScalar>(v.z()));
-}
-Vec3 fromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+using detail::fromBt;
+using detail::toBt;
 
 }  // namespace
 

@@ -48,9 +48,10 @@ std::size_t algorithmPoolElementSize();
 
 /// Registers adb's algorithms with `dispatcher`, for contact points and for closest points (so
 /// contactTest and contactPairTest work): MeshMeshAlgorithm for MeshShape pairs and
-/// MeshConvexAlgorithm for a MeshShape against every convex shape type and MeshPlaneAlgorithm
-/// against a static plane, both orders. Not yet covered: a MeshShape against another concave
-/// shape (a btBvhTriangleMeshShape ground). Throws SettingsError when the configuration's algorithm pool is too small (see
+/// MeshConvexAlgorithm for a MeshShape against every convex shape type, MeshPlaneAlgorithm
+/// against a static plane and MeshConcaveAlgorithm against every other concave shape (a
+/// btBvhTriangleMeshShape ground, a heightfield), both orders. Compounds reach these through
+/// Bullet's compound algorithm. Throws SettingsError when the configuration's algorithm pool is too small (see
 /// algorithmPoolElementSize()).
 void registerAlgorithms(btCollisionDispatcher& dispatcher,
                         btDefaultCollisionConfiguration& configuration);
