@@ -61,27 +61,10 @@ struct TriangleVsMesh : public btTriangleCallback {
 
 }  // namespace
 
-MeshConcaveAlgorithm::MeshConcaveAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                                           const btCollisionObjectWrapper* body0,
-                                           const btCollisionObjectWrapper* body1, bool swapped)
-    : btActivatingCollisionAlgorithm(ci, body0, body1), m_swapped(swapped) {}
-
-MeshConcaveAlgorithm::~MeshConcaveAlgorithm() {
-  if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
-}
-
-void MeshConcaveAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (m_manifold) manifolds.push_back(m_manifold);
-}
-
 void MeshConcaveAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                             const btCollisionObjectWrapper* body1,
                                             const btDispatcherInfo&, btManifoldResult* result) {
-  if (!m_manifold) {
-    m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
-                                               body1->getCollisionObject());
-  }
-  result->setPersistentManifold(m_manifold);
+  manifoldFor(body0, body1, result);
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* otherWrap = m_swapped ? body0 : body1;
   const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
@@ -104,13 +87,6 @@ void MeshConcaveAlgorithm::processCollision(const btCollisionObjectWrapper* body
   mesh->getAabb(otherWrap->getWorldTransform().inverse() * meshWrap->getWorldTransform(), lo, hi);
   other->processAllTriangles(&cb, lo, hi);
   result->refreshContactPoints();
-}
-
-btCollisionAlgorithm* MeshConcaveAlgorithm::CreateFunc::CreateCollisionAlgorithm(
-    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-    const btCollisionObjectWrapper* body1) {
-  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshConcaveAlgorithm));
-  return new (memory) MeshConcaveAlgorithm(ci, body0, body1, m_swapped);
 }
 
 }  // namespace adb

@@ -36,11 +36,4 @@ void MeshConvexAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
   if (m_triangles.m_manifoldPtr) manifolds.push_back(m_triangles.m_manifoldPtr);
 }
 
-btCollisionAlgorithm* MeshConvexAlgorithm::CreateFunc::CreateCollisionAlgorithm(
-    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-    const btCollisionObjectWrapper* body1) {
-  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshConvexAlgorithm));
-  return new (memory) MeshConvexAlgorithm(ci, body0, body1, m_swapped);
-}
-
 }  // namespace adb

@@ -28,27 +28,10 @@ constexpr std::uint32_t kMaxContactPairs = 64;
 
 }  // namespace
 
-MeshMeshAlgorithm::MeshMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                                     const btCollisionObjectWrapper* body0,
-                                     const btCollisionObjectWrapper* body1)
-    : btActivatingCollisionAlgorithm(ci, body0, body1) {}
-
-MeshMeshAlgorithm::~MeshMeshAlgorithm() {
-  if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
-}
-
-void MeshMeshAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (m_manifold) manifolds.push_back(m_manifold);
-}
-
 void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                          const btCollisionObjectWrapper* body1,
                                          const btDispatcherInfo&, btManifoldResult* result) {
-  if (!m_manifold) {
-    m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
-                                               body1->getCollisionObject());
-  }
-  result->setPersistentManifold(m_manifold);
+  manifoldFor(body0, body1, result);
   const auto* shape0 = static_cast<const MeshShape*>(body0->getCollisionShape());
   const auto* shape1 = static_cast<const MeshShape*>(body1->getCollisionShape());
   const Pose pose0 = toPose(body0->getWorldTransform());
@@ -82,13 +65,6 @@ void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   result->refreshContactPoints();
 }
 
-btCollisionAlgorithm* MeshMeshAlgorithm::CreateFunc::CreateCollisionAlgorithm(
-    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-    const btCollisionObjectWrapper* body1) {
-  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshMeshAlgorithm));
-  return new (memory) MeshMeshAlgorithm(ci, body0, body1);
-}
-
 std::size_t algorithmPoolElementSize() {
   return std::max({sizeof(MeshMeshAlgorithm), sizeof(MeshConvexAlgorithm),
                    sizeof(MeshPlaneAlgorithm), sizeof(MeshConcaveAlgorithm)});
@@ -109,33 +85,29 @@ void registerAlgorithms(btCollisionDispatcher& dispatcher,
         "to adb::algorithmPoolElementSize()");
   }
   // Function objects live as long as the program: dispatchers keep raw pointers to them.
-  static MeshMeshAlgorithm::CreateFunc createMeshMesh;
-  static MeshConvexAlgorithm::CreateFunc createConvexMesh;
-  static MeshConvexAlgorithm::CreateFunc createMeshConvex = [] {
-    MeshConvexAlgorithm::CreateFunc f;
-    f.m_swapped = true;  // Bullet's flag: body0 is the mesh
+  // The mesh-second order of each algorithm: Bullet's m_swapped flag of the factory.
+  const auto swapped = [](auto f) {
+    f.m_swapped = true;
     return f;
-  }();
+  };
+  static CreateAlgorithm<MeshMeshAlgorithm> createMeshMesh;
+  static CreateAlgorithm<MeshConvexAlgorithm> createConvexMesh;
+  static CreateAlgorithm<MeshConvexAlgorithm> createMeshConvex =
+      swapped(CreateAlgorithm<MeshConvexAlgorithm>{});
   const auto both = [&](int t0, int t1, btCollisionAlgorithmCreateFunc* f) {
     dispatcher.registerCollisionCreateFunc(t0, t1, f);
     dispatcher.registerClosestPointsCreateFunc(t0, t1, f);
   };
   both(CUSTOM_CONCAVE_SHAPE_TYPE, CUSTOM_CONCAVE_SHAPE_TYPE, &createMeshMesh);
-  static MeshPlaneAlgorithm::CreateFunc createMeshPlane;
-  static MeshPlaneAlgorithm::CreateFunc createPlaneMesh = [] {
-    MeshPlaneAlgorithm::CreateFunc f;
-    f.m_swapped = true;  // body0 is the plane
-    return f;
-  }();
+  static CreateAlgorithm<MeshPlaneAlgorithm> createMeshPlane;
+  static CreateAlgorithm<MeshPlaneAlgorithm> createPlaneMesh =
+      swapped(CreateAlgorithm<MeshPlaneAlgorithm>{});
   both(CUSTOM_CONCAVE_SHAPE_TYPE, STATIC_PLANE_PROXYTYPE, &createMeshPlane);
   both(STATIC_PLANE_PROXYTYPE, CUSTOM_CONCAVE_SHAPE_TYPE, &createPlaneMesh);
   // Every other concave type (triangle meshes, heightfields, GImpact, ...), both orders.
-  static MeshConcaveAlgorithm::CreateFunc createMeshConcave;
-  static MeshConcaveAlgorithm::CreateFunc createConcaveMesh = [] {
-    MeshConcaveAlgorithm::CreateFunc f;
-    f.m_swapped = true;  // body0 is the other concave shape
-    return f;
-  }();
+  static CreateAlgorithm<MeshConcaveAlgorithm> createMeshConcave;
+  static CreateAlgorithm<MeshConcaveAlgorithm> createConcaveMesh =
+      swapped(CreateAlgorithm<MeshConcaveAlgorithm>{});
   for (int t = CONCAVE_SHAPES_START_HERE + 1; t < CUSTOM_CONCAVE_SHAPE_TYPE; ++t) {
     if (t == STATIC_PLANE_PROXYTYPE) continue;
     both(CUSTOM_CONCAVE_SHAPE_TYPE, t, &createMeshConcave);

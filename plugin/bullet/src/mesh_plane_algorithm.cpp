@@ -19,27 +19,10 @@ constexpr int kMaxCandidates = 256;
 
 }  // namespace
 
-MeshPlaneAlgorithm::MeshPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                                       const btCollisionObjectWrapper* body0,
-                                       const btCollisionObjectWrapper* body1, bool swapped)
-    : btActivatingCollisionAlgorithm(ci, body0, body1), m_swapped(swapped) {}
-
-MeshPlaneAlgorithm::~MeshPlaneAlgorithm() {
-  if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
-}
-
-void MeshPlaneAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (m_manifold) manifolds.push_back(m_manifold);
-}
-
 void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                           const btCollisionObjectWrapper* body1,
                                           const btDispatcherInfo&, btManifoldResult* result) {
-  if (!m_manifold) {
-    m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
-                                               body1->getCollisionObject());
-  }
-  result->setPersistentManifold(m_manifold);
+  btPersistentManifold* manifold = manifoldFor(body0, body1, result);
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* planeWrap = m_swapped ? body0 : body1;
   const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
@@ -54,7 +37,7 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   const AdbTree& tree = mesh->tree();
   const Vec3 n(nLocalBt.x(), nLocalBt.y(), nLocalBt.z());
   const double c = n.dot(tree.origin()) + nWorld.dot(meshPose.getOrigin()) - dWorld;
-  const double reach = m_manifold->getContactBreakingThreshold() + mesh->getMargin();
+  const double reach = manifold->getContactBreakingThreshold() + mesh->getMargin();
 
   // Bullet's normal on body 1 points towards body 0.
   const btVector3 normalOnB = m_swapped ? -nWorld : nWorld;
@@ -90,13 +73,6 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     }
   }
   result->refreshContactPoints();
-}
-
-btCollisionAlgorithm* MeshPlaneAlgorithm::CreateFunc::CreateCollisionAlgorithm(
-    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
-    const btCollisionObjectWrapper* body1) {
-  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshPlaneAlgorithm));
-  return new (memory) MeshPlaneAlgorithm(ci, body0, body1, m_swapped);
 }
 
 }  // namespace adb

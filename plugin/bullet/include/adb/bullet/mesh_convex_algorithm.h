@@ -5,7 +5,6 @@
 #pragma once
 
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
-#include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
 #include <BulletCollision/CollisionDispatch/btConvexConcaveCollisionAlgorithm.h>
 
 #include "adb/bullet/precision.h"
@@ -29,12 +28,6 @@ ATTRIBUTE_ALIGNED16(class) MeshConvexAlgorithm : public btActivatingCollisionAlg
     return 1;  // no continuous collision detection against meshes
   }
   void getAllContactManifolds(btManifoldArray& manifolds) override;
-
-  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* body0,
-                                                   const btCollisionObjectWrapper* body1) override;
-  };
 
  private:
   bool m_swapped;

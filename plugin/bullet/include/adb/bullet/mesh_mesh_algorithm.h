@@ -6,39 +6,23 @@
 // across all pairs and plausible contacts from probabilistic witnesses come next (issue 3).
 #pragma once
 
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
-#include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 
-#include "adb/bullet/precision.h"
+#include "adb/bullet/manifold_algorithm.h"
 #include "adb/core/query.h"
 
 namespace adb {
 
-class MeshMeshAlgorithm : public btActivatingCollisionAlgorithm {
+class MeshMeshAlgorithm : public ManifoldAlgorithm {
  public:
-  MeshMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                    const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
-  ~MeshMeshAlgorithm() override;
+  using ManifoldAlgorithm::ManifoldAlgorithm;
 
   void processCollision(const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                         btManifoldResult* result) override;
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return 1;  // no continuous collision detection for meshes
-  }
-  void getAllContactManifolds(btManifoldArray& manifolds) override;
-
-  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* body0,
-                                                   const btCollisionObjectWrapper* body1) override;
-  };
 
  private:
-  btPersistentManifold* m_manifold = nullptr;
   QueryScratch m_scratch;  // grows to this pair's largest query, then stays
 };
 
