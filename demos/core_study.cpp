@@ -4,7 +4,7 @@
 // Prints a Markdown table (docs/core-results.md is made with it).
 //
 //   build/bin/adb-core-study [--triangles N[,N...]] [--poses N] [--p-min P] [--k-min K]
-//                            [--models a,b,...] [--exact-counting]
+//                            [--models a,b,...] [--exact-counting] [--grid G]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,6 +27,7 @@ struct Options {
   double pMin = 0.99;
   int kMin = 10;
   adb::CellCounting counting = adb::CellCounting::Approximate;
+  int grid = adb::BuildSettings{}.gridResolution;
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -39,7 +40,7 @@ std::vector<std::string> split(const std::string& s) {
 [[noreturn]] void usage(int code) {
   std::fprintf(stderr,
                "usage: adb-core-study [--triangles N[,N...]] [--poses N] [--p-min P] "
-               "[--k-min K] [--models a,b,...] [--exact-counting]\n");
+               "[--k-min K] [--models a,b,...] [--exact-counting] [--grid G]\n");
   std::exit(code);
 }
 
@@ -59,6 +60,8 @@ Options parse(int argc, char** argv) {
       o.pMin = std::atof(argv[++i]);
     } else if (arg == "--k-min" && hasValue) {
       o.kMin = std::atoi(argv[++i]);
+    } else if (arg == "--grid" && hasValue) {
+      o.grid = std::atoi(argv[++i]);
     } else if (arg == "--exact-counting") {
       o.counting = adb::CellCounting::Exact;
     } else {
@@ -81,6 +84,7 @@ adb::QueryResult timed(const adb::AdbTree& t, const adb::PosePair& p,
 
 struct Row {
   int counted = 0, wrong = 0, quality = 0, exactHit = 0;
+  int confident = 0, confidentWrong = 0;  // ADB answers with confidence >= 0.99
   double exactUs = 0, adbUs = 0, exactPairs = 0, adbPairs = 0;
 };
 
@@ -101,6 +105,10 @@ Row measure(const adb::TriangleMesh& mesh, const adb::AdbTree& tree, const Optio
       if (re.nodePairs <= 1 && !re.collides) continue;  // root boxes apart: not counted
       ++row.counted;
       row.wrong += re.collides != ra.collides ? 1 : 0;
+      if (ra.confidence >= 0.99) {
+        ++row.confident;
+        row.confidentWrong += re.collides != ra.collides ? 1 : 0;
+      }
       row.quality += ra.stop == adb::StopReason::QualityReached ? 1 : 0;
       row.exactHit += ra.stop == adb::StopReason::ExactHit ? 1 : 0;
       row.exactUs += re.seconds * 1e6;
@@ -116,26 +124,27 @@ Row measure(const adb::TriangleMesh& mesh, const adb::AdbTree& tree, const Optio
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  std::printf("ADB p_min %.2f, k_min %d (%s cell counts) vs exact mode, distances 0.4..2.0, "
-              "%d poses each, best of 3 runs per query\n\n",
+  std::printf("ADB p_min %.2f, k_min %d (%s cell counts, grid %d) vs exact mode, distances "
+              "0.4..2.0, %d poses each, best of 3 runs per query\n\n",
               o.pMin, o.kMin, o.counting == adb::CellCounting::Exact ? "exact" : "approximate",
-              o.poses);
+              o.grid, o.poses);
   std::printf("| model | triangles | counted | error %% | exact us | ADB us | speedup | "
-              "exact pairs | ADB pairs | stop k_min %% | stop exact hit %% |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "exact pairs | ADB pairs | stop k_min %% | stop exact hit %% | wrong at conf >= 0.99 |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& name : o.models) {
     for (std::size_t n : o.triangles) {
       const adb::TriangleMesh mesh = adb::gen::makeModel(name, n);
       adb::BuildSettings settings;
       settings.counting = o.counting;
+      settings.gridResolution = o.grid;
       const adb::AdbTree tree(mesh, settings);
       const Row r = measure(mesh, tree, o);
       const double c = std::max(1, r.counted);
-      std::printf("| %s | %zu | %d | %.2f | %.1f | %.1f | %.2f | %.0f | %.0f | %.0f | %.0f |\n",
+      std::printf("| %s | %zu | %d | %.2f | %.1f | %.1f | %.2f | %.0f | %.0f | %.0f | %.0f | %d of %d |\n",
                   name.c_str(), mesh.triangleCount(), r.counted, 100.0 * r.wrong / c,
                   r.exactUs / c, r.adbUs / c, r.adbUs > 0 ? r.exactUs / r.adbUs : 0.0,
                   r.exactPairs / c, r.adbPairs / c, 100.0 * r.quality / c,
-                  100.0 * r.exactHit / c);
+                  100.0 * r.exactHit / c, r.confidentWrong, r.confident);
       std::fflush(stdout);
     }
   }

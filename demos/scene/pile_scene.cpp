@@ -126,9 +126,7 @@ struct PileScene::Impl {
 PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Impl>()) {
   Impl& s = *m_impl;
   const bool adb = settings.backend == Backend::Adb;
-  btDefaultCollisionConstructionInfo info;
-  info.m_customCollisionAlgorithmMaxElementSize = static_cast<int>(algorithmPoolElementSize());
-  s.configuration = std::make_unique<btDefaultCollisionConfiguration>(info);
+  s.configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
   s.dispatcher = std::make_unique<btCollisionDispatcher>(s.configuration.get());
   if (adb) {
     registerAlgorithms(*s.dispatcher, *s.configuration);

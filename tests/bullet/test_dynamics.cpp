@@ -26,9 +26,7 @@ struct World {
   std::vector<std::unique_ptr<btRigidBody>> bodies;
 
   World() {
-    btDefaultCollisionConstructionInfo info;
-    info.m_customCollisionAlgorithmMaxElementSize = static_cast<int>(algorithmPoolElementSize());
-    configuration = std::make_unique<btDefaultCollisionConfiguration>(info);
+    configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
     dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
     registerAlgorithms(*dispatcher, *configuration);
     world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), &broadphase, &solver,

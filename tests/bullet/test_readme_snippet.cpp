@@ -8,9 +8,7 @@
 #include <adb/bullet/mesh_shape.h>
 
 bool readmeBulletExample() {
-  btDefaultCollisionConstructionInfo info;
-  info.m_customCollisionAlgorithmMaxElementSize = int(adb::algorithmPoolElementSize());
-  btDefaultCollisionConfiguration configuration(info);
+  btDefaultCollisionConfiguration configuration(adb::collisionConstructionInfo());
   btCollisionDispatcher dispatcher(&configuration);
   adb::registerAlgorithms(dispatcher, configuration);  // MeshShape pairs, contacts + closest points
 

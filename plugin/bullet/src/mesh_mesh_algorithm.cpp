@@ -70,6 +70,12 @@ std::size_t algorithmPoolElementSize() {
                    sizeof(MeshPlaneAlgorithm), sizeof(MeshConcaveAlgorithm)});
 }
 
+btDefaultCollisionConstructionInfo collisionConstructionInfo() {
+  btDefaultCollisionConstructionInfo info;
+  info.m_customCollisionAlgorithmMaxElementSize = static_cast<int>(algorithmPoolElementSize());
+  return info;
+}
+
 void registerAlgorithms(btCollisionDispatcher& dispatcher,
                         btDefaultCollisionConfiguration& configuration) {
   // Bullet's pool allocator checks the requested size against its element size only with a

@@ -30,6 +30,10 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
 /// as btDefaultCollisionConstructionInfo::m_customCollisionAlgorithmMaxElementSize.
 std::size_t algorithmPoolElementSize();
 
+/// Bullet's construction info with the algorithm pool sized for adb: start a world's
+/// btDefaultCollisionConfiguration from this (and change what else it needs).
+btDefaultCollisionConstructionInfo collisionConstructionInfo();
+
 /// Registers adb's algorithms with `dispatcher`, for contact points and for closest points (so
 /// contactTest and contactPairTest work): MeshMeshAlgorithm for MeshShape pairs and
 /// MeshConvexAlgorithm for a MeshShape against every convex shape type, MeshPlaneAlgorithm
