@@ -2,11 +2,15 @@
 // confidence under growing budgets, witnesses, thread safety, no allocation in steady state.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <limits>
 #include <new>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "adb/core/mesh_generators.h"
 #include "adb/core/tree.h"
@@ -244,6 +248,78 @@ TEST(AdbWitnesses, CollisionAnswersCarryAcceptedPairs) {
     }
   }
   EXPECT_GT(collisions, 20);
+}
+
+// Without pruning, a completed ADB traversal has tested every overlapping triangle pair: it
+// must give the exact mode's answer on every pose (including those where the paper's rule
+// errs) and find the same intersecting triangle pairs, only in another order.
+TEST(AdbUnpruned, CompletedTraversalIsExact) {
+  const TriangleMesh mesh = gen::makeModel("pipes", 5000);
+  const AdbTree tree(mesh);
+  QueryScratch adbScratch, exactScratch;
+  QuerySettings adb = test::adbSettings(0.99, std::numeric_limits<int>::max());
+  adb.pruneImprobable = false;
+  adb.stopAtFirstHit = false;
+  adb.maxWitnesses = 1u << 20;
+  QuerySettings exact = test::exactSettings();
+  exact.stopAtFirstHit = false;
+  exact.maxWitnesses = 1u << 20;
+  std::mt19937_64 rng(test::kSeed);
+  int collisions = 0;
+  for (int i = 0; i < 150; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.01 * i, rng);
+    const QueryResult r = collide(tree, p.a, tree, p.b, adb, adbScratch);
+    const QueryResult e = collide(tree, p.a, tree, p.b, exact, exactScratch);
+    ASSERT_EQ(r.stop, StopReason::Completed) << "pose " << i;
+    EXPECT_EQ(r.collides, e.collides) << "pose " << i;
+    EXPECT_EQ(r.confidence, 1.0) << "pose " << i;
+    EXPECT_TRUE(adbScratch.openPairs().empty());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> a, b;
+    for (const Witness& w : adbScratch.witnesses()) {
+      if (w.isExact()) a.emplace_back(w.triangleA, w.triangleB);
+    }
+    for (const Witness& w : exactScratch.witnesses()) b.emplace_back(w.triangleA, w.triangleB);
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b) << "pose " << i;
+    collisions += e.collides;
+  }
+  EXPECT_GT(collisions, 20);
+  EXPECT_LT(collisions, 140);
+}
+
+// A cut unpruned traversal leaves its frontier: valid node pairs with estimates in [0, 1],
+// fewer of them as the budget grows to completion.
+TEST(AdbUnpruned, CutTraversalLeavesItsOpenPairs) {
+  const TriangleMesh mesh = gen::makeModel("knot", 5000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  QuerySettings s = test::adbSettings(0.99, std::numeric_limits<int>::max());
+  s.pruneImprobable = false;
+  s.stopAtFirstHit = false;
+  std::mt19937_64 rng(test::kSeed);
+  const PosePair p = benchmarkPoses(mesh.bounds(), 0.5, rng);
+  s.budgetNodePairs = 64;
+  const QueryResult cut = collide(tree, p.a, tree, p.b, s, scratch);
+  ASSERT_EQ(cut.stop, StopReason::WorkBudget);
+  ASSERT_FALSE(scratch.openPairs().empty());
+  for (const OpenPair& o : scratch.openPairs()) {
+    EXPECT_LT(o.a, tree.nodes().size());
+    EXPECT_LT(o.b, tree.nodes().size());
+    EXPECT_GE(o.p, 0.0f);
+    EXPECT_LE(o.p, 1.0f);
+    EXPECT_GE(o.upper, 0.0f);
+    EXPECT_LE(o.upper, 1.0f);
+  }
+  s.budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
+  const QueryResult full = collide(tree, p.a, tree, p.b, s, scratch);
+  EXPECT_EQ(full.stop, StopReason::Completed);
+  EXPECT_TRUE(scratch.openPairs().empty());
+  // An exact-mode query's stack is not a set of estimated pairs: none are reported.
+  QuerySettings e = test::exactSettings();
+  e.budgetNodePairs = 8;
+  collide(tree, p.a, tree, p.b, e, scratch);
+  EXPECT_TRUE(scratch.openPairs().empty());
 }
 
 TEST(AdbThreads, ConcurrentQueriesOnSharedTreesMatchSequentialOnes) {

@@ -33,7 +33,7 @@
 namespace adb {
 
 struct QueryScratchAccess {
-  using Entry = QueryScratch::Entry;
+  using Entry = OpenPair;
   static std::vector<Entry>& heap(QueryScratch& s) { return s.m_heap; }
   static std::vector<Witness>& witnesses(QueryScratch& s) { return s.m_witnesses; }
 };
@@ -172,7 +172,9 @@ class Traversal {
     bool hit = false;
     while (!m_heap.empty()) {
       if (!budgetLeft()) {
-        // Nothing is known about the pairs left unexplored: no model in exact mode.
+        // Nothing is known about the pairs left unexplored: no model in exact mode. Its
+        // stack is not a set of estimated pairs, so openPairs() reports none.
+        m_heap.clear();
         finish(hit, hit ? 1.0 : 0.0, m_result.stop);
         return;
       }
@@ -265,7 +267,7 @@ class Traversal {
         const detail::PairEstimate est = detail::estimatePair(m_a, ca[i], da, m_b, cb[j], db,
                                                               m_frame);
         if (!est.overlap) continue;
-        if (!(est.lower > 0.0)) {  // paper: insert only when p > 0
+        if (!(est.lower > 0.0) && m_settings.pruneImprobable) {  // paper: only p > 0
           m_prunedMass += est.expected;
           continue;
         }

@@ -49,6 +49,12 @@ struct QuerySettings {
   bool stopAtFirstHit = true;
   /// Witnesses kept at most; more are counted in QueryResult::witnessesDropped.
   std::uint32_t maxWitnesses = 64;
+  /// ADB mode: drop pairs whose boxes overlap but whose probability is 0 (the paper's rule,
+  /// and its main source of error). Off, they are queued last instead, so a traversal that
+  /// completes has tested every overlapping triangle pair (an exact answer, visited most
+  /// likely first) and a cut one leaves them in QueryScratch::openPairs(). Contact generation
+  /// under a frame budget runs with it off.
+  bool pruneImprobable = true;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
@@ -78,23 +84,28 @@ struct QueryResult {
   double seconds = 0.0;              ///< wall clock of the query
 };
 
+/// A node pair still queued when an ADB query stopped: unresolved, with its estimates.
+struct OpenPair {
+  float p;                 ///< Eq. 3 lower bound: the traversal's priority
+  float upper;             ///< Pr[X >= 1]: the pair's share of the "no collision" doubt
+  std::uint32_t a, b;      ///< node indices in tree A and tree B
+  std::uint16_t depthA, depthB;
+};
+
 /// Reusable working memory of queries: one per thread.
 class QueryScratch {
  public:
   /// The witnesses of the last query that used this scratch.
   const std::vector<Witness>& witnesses() const { return m_witnesses; }
+  /// ADB mode: the pairs the last query left queued (heap order, not sorted), empty when it
+  /// completed. Where a budget cut a query, these are the plausible contacts.
+  const std::vector<OpenPair>& openPairs() const { return m_heap; }
   /// Bytes currently reserved (grows to the largest query seen, never shrinks).
   std::size_t capacityBytes() const;
 
  private:
   friend struct QueryScratchAccess;
-  struct Entry {
-    float p;                 // Eq. 3 lower bound: the priority
-    float upper;             // Pr[X >= 1]: the pair's share of the "no collision" doubt
-    std::uint32_t a, b;      // node indices
-    std::uint16_t depthA, depthB;
-  };
-  std::vector<Entry> m_heap;
+  std::vector<OpenPair> m_heap;
   std::vector<Witness> m_witnesses;
 };
 
