@@ -4,11 +4,15 @@
 //
 //   build/bin/adb-demo [--backend adb|gimpact] [--bodies N] [--triangles N] [--steps N]
 //                      [--every N] [--seed S] [--out DIR]
+//                      [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K]
+//                      [--p-accept P] [--no-soften]
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,8 +30,29 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code ? stderr : stdout,
                "usage: adb-demo [--backend adb|gimpact] [--bodies N] [--triangles N] "
-               "[--steps N] [--every N] [--seed S] [--out DIR]\n");
+               "[--steps N] [--every N] [--seed S] [--out DIR]\n"
+               "                [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K] "
+               "[--p-accept P] [--no-soften]\n"
+               "  --budget-us     wall-clock budget per step for all mesh-mesh pairs (default "
+               "none)\n"
+               "  --budget-pairs  node pairs per step for all mesh-mesh pairs: reproducible\n"
+               "  --p-min/--k-min stop refining a pair at k_min node pairs above p_min "
+               "(default k_min 0: never)\n"
+               "  --p-accept      unresolved node pairs at or above this become plausible "
+               "contacts (0.9)\n"
+               "  --no-soften     plausible contacts push as hard as exact ones\n");
   std::exit(code);
+}
+
+// A number that must be all of `value`: "12x" is an error, not 12.
+double number(const std::string& flag, const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || std::isnan(v)) {
+    std::fprintf(stderr, "adb-demo: %s needs a number, got '%s'\n", flag.c_str(), value.c_str());
+    std::exit(2);
+  }
+  return v;
 }
 
 Options parse(int argc, char** argv) {
@@ -35,6 +60,10 @@ Options parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--help") usage(0);
+    if (arg == "--no-soften") {
+      o.scene.frame.softenPlausible = false;
+      continue;
+    }
     if (i + 1 >= argc) usage(2);
     const std::string value = argv[++i];
     if (arg == "--backend" && (value == "adb" || value == "gimpact")) {
@@ -51,6 +80,16 @@ Options parse(int argc, char** argv) {
       o.scene.seed = std::strtoull(value.c_str(), nullptr, 10);
     } else if (arg == "--out") {
       o.out = value;
+    } else if (arg == "--budget-us") {
+      o.scene.frame.budgetMicros = number(arg, value);
+    } else if (arg == "--budget-pairs") {
+      o.scene.frame.budgetNodePairs = static_cast<std::uint64_t>(std::max(0.0, number(arg, value)));
+    } else if (arg == "--p-min") {
+      o.scene.frame.pMin = number(arg, value);
+    } else if (arg == "--k-min") {
+      o.scene.frame.kMin = static_cast<int>(number(arg, value));
+    } else if (arg == "--p-accept") {
+      o.scene.frame.pAccept = number(arg, value);
     } else {
       std::fprintf(stderr, "adb-demo: bad flag or value: %s %s\n", arg.c_str(), value.c_str());
       usage(2);
@@ -64,53 +103,117 @@ double percentile(std::vector<double> v, double q) {
   return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
+std::string budgetText(const adb::FrameSettings& f) {
+  std::string text;
+  if (std::isfinite(f.budgetMicros)) text += std::to_string(static_cast<long>(f.budgetMicros)) + " us";
+  if (f.budgetNodePairs != adb::FrameSettings{}.budgetNodePairs) {
+    text += (text.empty() ? "" : " and ") + std::to_string(f.budgetNodePairs) + " node pairs";
+  }
+  return text.empty() ? "none" : text + " per step";
+}
+
+void writeCsvHeader(std::ofstream& csv) {
+  csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y,"
+         "frame_us,contact_us,pairs,exact_pairs,quality_pairs,cut_pairs,node_pairs,exact_contacts,"
+         "plausible_contacts,mean_confidence,worst_confidence\n";
+}
+
+void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
+  const adb::FrameStats& f = s.frame;
+  csv << step << ',' << s.seconds << ',' << s.contacts << ',' << s.maxPenetration << ','
+      << s.kinetic << ',' << s.energy << ',' << s.atRest << ',' << s.lowestY << ',' << f.micros
+      << ',' << f.contactMicros << ',' << f.pairs << ',' << f.exactPairs << ',' << f.qualityPairs << ',' << f.cutPairs
+      << ',' << f.nodePairs << ',' << f.exactContacts << ',' << f.plausibleContacts << ','
+      << f.meanConfidence << ',' << f.worstConfidence << '\n';
+}
+
+struct Totals {
+  std::vector<double> stepSeconds, frameMicros;
+  double worstPenetration = 0, lowest = 1e300, confidenceSum = 0, worstConfidence = 1;
+  std::uint64_t pairs = 0, cutPairs = 0, exactContacts = 0, plausibleContacts = 0;
+
+  void add(const adb::demo::StepStats& s) {
+    stepSeconds.push_back(s.seconds);
+    frameMicros.push_back(s.frame.micros);
+    worstPenetration = std::max(worstPenetration, s.maxPenetration);
+    lowest = std::min(lowest, s.lowestY);
+    confidenceSum += s.frame.meanConfidence;
+    worstConfidence = std::min(worstConfidence, s.frame.worstConfidence);
+    pairs += s.frame.pairs;
+    cutPairs += s.frame.cutPairs;
+    exactContacts += s.frame.exactContacts;
+    plausibleContacts += s.frame.plausibleContacts;
+  }
+};
+
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  const char* backend = o.scene.backend == adb::demo::Backend::Adb ? "adb (exact contacts)" : "GImpact";
-  adb::demo::PileScene scene(o.scene);
-  std::printf("pile scene: %d bodies, %zu triangles in all, backend %s, %d steps of 1/60 s\n\n",
+  const bool adbBackend = o.scene.backend == adb::demo::Backend::Adb;
+  const char* backend = adbBackend ? "adb" : "GImpact";
+  std::unique_ptr<adb::demo::PileScene> made;
+  try {
+    made = std::make_unique<adb::demo::PileScene>(o.scene);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "adb-demo: %s\n", e.what());
+    return 2;
+  }
+  adb::demo::PileScene& scene = *made;
+  std::printf("pile scene: %d bodies, %zu triangles in all, backend %s, %d steps of 1/60 s\n",
               scene.bodyCount(), scene.triangleCount(), backend, o.steps);
-  std::printf("%6s %10s %9s %12s %10s %9s %8s\n", "step", "ms/step", "contacts",
-              "max pen.", "kinetic", "energy", "at rest");
+  if (adbBackend) {
+    const adb::FrameSettings& f = o.scene.frame;
+    std::printf("budget %s, p_min %.3g, k_min %d%s, p_accept %.3g%s\n", budgetText(f).c_str(),
+                f.pMin, f.kMin, f.kMin == 0 ? " (never stop on quality)" : "", f.pAccept,
+                f.softenPlausible ? ", plausible contacts softened" : "");
+  }
+  std::printf("\n%6s %9s %9s %8s %6s %5s %9s %10s %9s %8s\n", "step", "ms/step", "pairs us",
+              "contacts", "pairs", "cut", "conf.", "max pen.", "energy", "at rest");
 
   std::ofstream csv;
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     csv.open(o.out + "/steps.csv");
-    csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y\n";
+    writeCsvHeader(csv);
   }
-  std::vector<double> times;
-  double worstPenetration = 0, lowest = 1e300;
+  Totals totals;
   adb::demo::StepStats last;
   for (int step = 1; step <= o.steps; ++step) {
     last = scene.step();
-    times.push_back(last.seconds);
-    worstPenetration = std::max(worstPenetration, last.maxPenetration);
-    lowest = std::min(lowest, last.lowestY);
-    if (csv) {
-      csv << step << ',' << last.seconds << ',' << last.contacts << ',' << last.maxPenetration
-          << ',' << last.kinetic << ',' << last.energy << ',' << last.atRest << ','
-          << last.lowestY << '\n';
-    }
+    totals.add(last);
+    if (csv) writeCsvRow(csv, step, last);
     if (step % o.every == 0 || step == o.steps) {
-      std::printf("%6d %10.3f %9d %12.4f %10.4f %9.3f %5d/%d\n", step, last.seconds * 1e3,
-                  last.contacts, last.maxPenetration, last.kinetic, last.energy, last.atRest,
-                  scene.bodyCount());
+      std::printf("%6d %9.3f %9.0f %8d %6u %5u %9.4f %10.4f %9.3f %5d/%d\n", step,
+                  last.seconds * 1e3, last.frame.micros, last.contacts, last.frame.pairs,
+                  last.frame.cutPairs, last.frame.meanConfidence, last.maxPenetration,
+                  last.energy, last.atRest, scene.bodyCount());
       std::fflush(stdout);
     }
   }
-  double total = 0;
-  for (double t : times) total += t;
-  std::printf("\n| backend | steps | mean ms/step | p99 ms/step | contacts (last) | "
-              "max penetration | lowest centre | kinetic (last) | at rest (last) |\n"
-              "|---|---|---|---|---|---|---|---|---|\n"
-              "| %s | %d | %.3f | %.3f | %d | %.4f | %.3f | %.4f | %d/%d |\n",
-              backend, o.steps, total / static_cast<double>(o.steps) * 1e3,
-              percentile(times, 0.99) * 1e3, last.contacts, worstPenetration, lowest,
-              last.kinetic, last.atRest, scene.bodyCount());
+  std::printf("\n| backend | steps | mean ms/step | p99 ms/step | mesh pairs: mean us | p99 us | "
+              "pairs cut | contacts exact/plausible | mean conf. | worst conf. | "
+              "max penetration | lowest centre | energy (last) | at rest (last) |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| %s | %d | %.3f | %.3f | %.0f | %.0f | %llu/%llu | %llu/%llu | %.4f | %.4f | "
+              "%.4f | %.3f | %.3f | %d/%d |\n",
+              backend, o.steps, mean(totals.stepSeconds) * 1e3,
+              percentile(totals.stepSeconds, 0.99) * 1e3, mean(totals.frameMicros),
+              percentile(totals.frameMicros, 0.99),
+              static_cast<unsigned long long>(totals.cutPairs),
+              static_cast<unsigned long long>(totals.pairs),
+              static_cast<unsigned long long>(totals.exactContacts),
+              static_cast<unsigned long long>(totals.plausibleContacts),
+              totals.confidenceSum / static_cast<double>(o.steps), totals.worstConfidence,
+              totals.worstPenetration, totals.lowest, last.energy, last.atRest,
+              scene.bodyCount());
   if (csv) std::printf("\nper-step figures: %s/steps.csv\n", o.out.c_str());
   // Below the floor (y = 0) by more than a body means one fell through: say so in the exit.
-  return lowest < -0.5 ? 1 : 0;
+  return totals.lowest < -0.5 ? 1 : 0;
 }

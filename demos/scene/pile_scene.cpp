@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "adb/bullet/dispatcher.h"
 #include "adb/bullet/mesh_mesh_algorithm.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/benchmark_poses.h"
@@ -81,6 +82,7 @@ struct IndexedMesh {
 struct PileScene::Impl {
   std::unique_ptr<btDefaultCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
+  Dispatcher* adbDispatcher = nullptr;  // the same object, under the adb backend
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   std::unique_ptr<btDiscreteDynamicsWorld> world;
@@ -127,10 +129,13 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
   Impl& s = *m_impl;
   const bool adb = settings.backend == Backend::Adb;
   s.configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
-  s.dispatcher = std::make_unique<btCollisionDispatcher>(s.configuration.get());
   if (adb) {
-    registerAlgorithms(*s.dispatcher, *s.configuration);
+    auto dispatcher = std::make_unique<Dispatcher>(s.configuration.get());
+    dispatcher->setFrameSettings(settings.frame);
+    s.adbDispatcher = dispatcher.get();
+    s.dispatcher = std::move(dispatcher);
   } else {
+    s.dispatcher = std::make_unique<btCollisionDispatcher>(s.configuration.get());
     btGImpactCollisionAlgorithm::registerAlgorithm(s.dispatcher.get());
   }
   s.world = std::make_unique<btDiscreteDynamicsWorld>(s.dispatcher.get(), &s.broadphase,
@@ -180,6 +185,7 @@ StepStats PileScene::step() {
   const auto t0 = std::chrono::steady_clock::now();
   s.world->stepSimulation(btScalar(1.0 / 60.0), 1, btScalar(1.0 / 60.0));
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (s.adbDispatcher) st.frame = s.adbDispatcher->lastFrameStats();
 
   for (int m = 0; m < s.dispatcher->getNumManifolds(); ++m) {
     const btPersistentManifold* manifold = s.dispatcher->getManifoldByIndexInternal(m);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "adb/bullet/frame_budget.h"
 #include "adb/core/mesh.h"
 
 namespace adb::demo {
@@ -20,6 +21,7 @@ struct SceneSettings {
   int bodies = 24;
   std::size_t trianglesPerBody = 1500;  ///< approximate, per generated body
   std::uint64_t seed = 1;
+  FrameSettings frame;  ///< adb's per-step budget and quality knobs (adb backend)
 };
 
 /// Per-step figures of the world.
@@ -31,6 +33,7 @@ struct StepStats {
   double energy = 0;          ///< kinetic + potential (g = 9.81, height above the bin floor)
   int atRest = 0;             ///< bodies slower than 0.05 m/s and 0.05 rad/s
   double lowestY = 0;         ///< lowest body centre: below the floor means fell through
+  FrameStats frame;           ///< adb backend: what the step did with its mesh-mesh pairs
 };
 
 class PileScene {

@@ -1,6 +1,7 @@
 // MeshShape bodies in a real btDiscreteDynamicsWorld: a concave mesh dropped on a mesh ground
 // comes to rest without falling through; contactPairTest reports contacts; registration
-// refuses a pool too small.
+// refuses a pool too small. Worlds use adb::Dispatcher without a budget unless a test says
+// Dispatch::Plain (Bullet's dispatcher with adb's algorithms registered).
 #include <gtest/gtest.h>
 
 #include <LinearMath/btPoolAllocator.h>
@@ -8,54 +9,19 @@
 
 #include <memory>
 
-#include "adb/bullet/mesh_mesh_algorithm.h"
-#include "adb/bullet/mesh_shape.h"
 #include "adb/core/mesh_generators.h"
+#include "bullet_world.h"
 
 namespace adb {
 namespace {
 
-// A world whose dispatcher knows adb's algorithms; owns everything it creates.
-struct World {
-  std::unique_ptr<btDefaultCollisionConfiguration> configuration;
-  std::unique_ptr<btCollisionDispatcher> dispatcher;
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
+using test::Dispatch;
+using test::World;
 
-  World() {
-    configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
-    dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
-    registerAlgorithms(*dispatcher, *configuration);
-    world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), &broadphase, &solver,
-                                                       configuration.get());
-    world->setGravity(btVector3(0, -10, 0));
-  }
-  ~World() {
-    for (auto& b : bodies) world->removeRigidBody(b.get());
-  }
+class DynamicsBothDispatchers : public ::testing::TestWithParam<Dispatch> {};
 
-  btRigidBody* add(std::shared_ptr<const MeshData> data, btScalar mass, const btVector3& at) {
-    return add(std::make_unique<MeshShape>(std::move(data)), mass, at);
-  }
-
-  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, btScalar mass, const btVector3& at) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-    btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape.get(), inertia);
-    ci.m_startWorldTransform.setOrigin(at);
-    auto body = std::make_unique<btRigidBody>(ci);
-    world->addRigidBody(body.get());
-    shapes.push_back(std::move(shape));
-    bodies.push_back(std::move(body));
-    return bodies.back().get();
-  }
-};
-
-TEST(Dynamics, TorusDroppedOnAMeshGroundComesToRest) {
-  World w;
+TEST_P(DynamicsBothDispatchers, TorusDroppedOnAMeshGroundComesToRest) {
+  World w(GetParam());
   // Ground: a 10 x 1 x 10 box mesh whose top face is y = 0.
   w.add(MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4)), 0, btVector3(0, -0.5, 0));
   // A torus lying flat (its axis along y after the mesh's own z axis is turned up).
@@ -70,6 +36,12 @@ TEST(Dynamics, TorusDroppedOnAMeshGroundComesToRest) {
   EXPECT_NEAR(p.y(), 0.2, 0.02) << "final height";
   EXPECT_LT(body->getLinearVelocity().length(), 0.05);
 }
+
+INSTANTIATE_TEST_SUITE_P(Dispatchers, DynamicsBothDispatchers,
+                         ::testing::Values(Dispatch::Adb, Dispatch::Plain),
+                         [](const auto& param) {
+                           return param.param == Dispatch::Adb ? "AdbDispatcher" : "Plain";
+                         });
 
 TEST(Dynamics, ConvexShapesRestOnAMeshGround) {
   // A box (half 0.3) and a sphere (radius 0.25) dropped on a mesh ground: the algorithm for
@@ -128,22 +100,6 @@ TEST(Dynamics, TorusDroppedOnABvhTriangleMeshGroundComesToRest) {
   EXPECT_LT(body->getLinearVelocity().length(), 0.05);
 }
 
-// FNV-1a over the bytes of every body's transform and velocities.
-std::uint64_t hashBodies(const std::vector<std::unique_ptr<btRigidBody>>& bodies) {
-  std::uint64_t h = 1469598103934665603ull;
-  const auto mix = [&](const void* p, std::size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-  };
-  for (const auto& b : bodies) {
-    const btTransform& t = b->getWorldTransform();
-    mix(&t, sizeof(t));
-    mix(&b->getLinearVelocity(), sizeof(btVector3));
-    mix(&b->getAngularVelocity(), sizeof(btVector3));
-  }
-  return h;
-}
-
 std::uint64_t simulateTumblingPair() {
   World w;
   w.add(MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4)), 0, btVector3(0, -0.5, 0));
@@ -155,7 +111,7 @@ std::uint64_t simulateTumblingPair() {
   for (int step = 0; step < 120; ++step) {
     w.world->stepSimulation(btScalar(1.0 / 60), 1, btScalar(1.0 / 60));
   }
-  return hashBodies(w.bodies);
+  return test::hashBodies(w.bodies);
 }
 
 TEST(Dynamics, SameSceneTwiceGivesBitIdenticalTrajectories) {

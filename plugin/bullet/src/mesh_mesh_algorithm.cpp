@@ -1,4 +1,4 @@
-// MeshMeshAlgorithm: exact contacts between two MeshShapes.
+// MeshMeshAlgorithm: a MeshShape pair, deferred to the step's scheduler or answered at once.
 #include "adb/bullet/mesh_mesh_algorithm.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -8,61 +8,112 @@
 #include <algorithm>
 #include <string>
 
+#include "adb/bullet/dispatcher.h"
 #include "adb/bullet/mesh_concave_algorithm.h"
 #include "adb/bullet/mesh_convex_algorithm.h"
 #include "adb/bullet/mesh_plane_algorithm.h"
 #include "adb/bullet/mesh_shape.h"
-#include "adb/core/triangle_contact.h"
 #include "conversions.h"
+#include "frame_scheduler.h"
+#include "pair_contacts.h"
 
 namespace adb {
 namespace {
 
-using detail::toBt;
 using detail::toPose;
-using detail::worldTriangle;
 
 // Triangle pairs turned into contacts per pair and step at most: the manifold keeps 4 points
 // (Bullet's reduction picks the widest), so more would cost without changing the result much.
 constexpr std::uint32_t kMaxContactPairs = 64;
 
+const MeshShape& meshOf(const btCollisionObjectWrapper* body) {
+  return *static_cast<const MeshShape*>(body->getCollisionShape());
+}
+
+btVector3 boxCentre(const btCollisionObjectWrapper* body) {
+  btVector3 lo, hi;
+  body->getCollisionShape()->getAabb(body->getWorldTransform(), lo, hi);
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace
+
+MeshMeshAlgorithm::MeshMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                     const btCollisionObjectWrapper* body0,
+                                     const btCollisionObjectWrapper* body1, bool swapped)
+    : ManifoldAlgorithm(ci, body0, body1, swapped) {
+  // Looked up once per pair, not per step.
+  if (auto* dispatcher = dynamic_cast<Dispatcher*>(ci.m_dispatcher1)) {
+    m_scheduler = &dispatcher->scheduler();
+  }
+}
 
 void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                          const btCollisionObjectWrapper* body1,
                                          const btDispatcherInfo&, btManifoldResult* result) {
-  manifoldFor(body0, body1, result);
-  const auto* shape0 = static_cast<const MeshShape*>(body0->getCollisionShape());
-  const auto* shape1 = static_cast<const MeshShape*>(body1->getCollisionShape());
-  const Pose pose0 = toPose(body0->getWorldTransform());
-  const Pose pose1 = toPose(body1->getWorldTransform());
-
+  // Only top-level pairs of a world's dispatch can wait for the scheduler: a compound's
+  // child wrappers, and contactTest's callbacks, live only during this call.
+  const bool topLevel = !body0->m_parent && !body1->m_parent;
+  if (m_scheduler && m_scheduler->collecting() && topLevel) {
+    m_scheduler->defer(detail::DeferredPair{
+        this, body0->getCollisionObject(), body1->getCollisionObject(),
+        body0->getWorldTransform(), body1->getWorldTransform(), body0->m_partId,
+        body0->m_index, body1->m_partId, body1->m_index, 0, 0.0, false, StopReason::Completed});
+    return;
+  }
   QuerySettings settings;
   settings.mode = QueryMode::Exact;
   settings.stopAtFirstHit = false;
   settings.maxWitnesses = kMaxContactPairs;
-  collide(shape0->tree(), pose0, shape1->tree(), pose1, settings, m_scratch);
+  m_last = collide(meshOf(body0).tree(), toPose(body0->getWorldTransform()),
+                   meshOf(body1).tree(), toPose(body1->getWorldTransform()), settings, m_scratch);
+  addContacts(body0, body1, *result, FrameSettings{});
+}
 
-  // Normals are oriented from body 0 towards body 1 by the centres of their boxes: a stable
-  // hint for the tie-breaks of triangleContact, frame after frame.
-  btVector3 lo0, hi0, lo1, hi1;
-  shape0->getAabb(body0->getWorldTransform(), lo0, hi0);
-  shape1->getAabb(body1->getWorldTransform(), lo1, hi1);
-  const btVector3 towards1 = 0.5 * ((lo1 + hi1) - (lo0 + hi0));
-  const Vec3 hint(towards1.x(), towards1.y(), towards1.z());
-
-  for (const Witness& w : m_scratch.witnesses()) {
-    if (!w.isExact()) continue;
-    Vec3 a[3], b[3];
-    worldTriangle(shape0->tree(), pose0, w.triangleA, a);
-    worldTriangle(shape1->tree(), pose1, w.triangleB, b);
-    const TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
-    if (!c.valid) continue;
-    // Bullet: the normal on B points from body 1 towards body 0, the point lies on body 1,
-    // and a negative distance is a penetration.
-    result->addContactPoint(toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth));
+QueryResult MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
+                                     const QuerySettings& settings) {
+  const auto& shape0 = *static_cast<const MeshShape*>(pair.object0->getCollisionShape());
+  const auto& shape1 = *static_cast<const MeshShape*>(pair.object1->getCollisionShape());
+  QuerySettings s = settings;
+  s.maxWitnesses = kMaxContactPairs;
+  m_last = collide(shape0.tree(), toPose(pair.transform0), shape1.tree(),
+                   toPose(pair.transform1), s, m_scratch);
+  if (m_last.stop == StopReason::Completed || m_last.stop == StopReason::QualityReached) {
+    m_needed = m_last.nodePairs;
   }
-  result->refreshContactPoints();
+  return m_last;
+}
+
+ContactCount MeshMeshAlgorithm::writeContacts(const detail::DeferredPair& pair,
+                                              const FrameSettings& settings) {
+  // Bullet's wrappers and result, rebuilt as the dispatch made them for this pair.
+  const btCollisionObjectWrapper body0(nullptr, pair.object0->getCollisionShape(), pair.object0,
+                                       pair.transform0, pair.partId0, pair.index0);
+  const btCollisionObjectWrapper body1(nullptr, pair.object1->getCollisionShape(), pair.object1,
+                                       pair.transform1, pair.partId1, pair.index1);
+  btManifoldResult result(&body0, &body1);
+  return addContacts(&body0, &body1, result, settings);
+}
+
+ContactCount MeshMeshAlgorithm::addContacts(const btCollisionObjectWrapper* body0,
+                                            const btCollisionObjectWrapper* body1,
+                                            btManifoldResult& result,
+                                            const FrameSettings& settings) {
+  btPersistentManifold* manifold = manifoldFor(body0, body1, &result);
+  const MeshShape& shape0 = meshOf(body0);
+  const MeshShape& shape1 = meshOf(body1);
+  const detail::PosedPair posed{&shape0.tree(), toPose(body0->getWorldTransform()),
+                                &shape1.tree(), toPose(body1->getWorldTransform()),
+                                shape0.data().facing, shape1.data().facing};
+  const Vec3 hint = detail::separationHint(manifold, boxCentre(body0), boxCentre(body1));
+  ContactCount count;
+  count.exact = detail::addExactContacts(posed, m_scratch.witnesses(), hint, result);
+  if (m_last.stop != StopReason::Completed) {
+    count.plausible = detail::addPlausibleContacts(posed, m_scratch.openPairs(), settings,
+                                                   hint, result, *manifold);
+  }
+  result.refreshContactPoints();
+  return count;
 }
 
 std::size_t algorithmPoolElementSize() {

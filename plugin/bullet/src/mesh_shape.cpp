@@ -13,12 +13,28 @@ namespace {
 using detail::fromBt;
 using detail::toBt;
 
+// The winding's sign from the signed volume (divergence theorem), taken about the box centre
+// so that a mesh far from the origin does not lose it to cancellation.
+int facingOf(const TriangleMesh& mesh, const MassProperties& mass) {
+  if (!mass.closed) return 0;
+  const Vec3 c = mesh.bounds().center();
+  double volume6 = 0.0;
+  for (const Triangle& t : mesh.triangles()) {
+    const Vec3 a = mesh.vertices()[t[0]] - c, b = mesh.vertices()[t[1]] - c,
+               d = mesh.vertices()[t[2]] - c;
+    volume6 += a.dot(b.cross(d));
+  }
+  return volume6 > 0.0 ? 1 : volume6 < 0.0 ? -1 : 0;
+}
+
 }  // namespace
 
 std::shared_ptr<const MeshData> MeshData::build(TriangleMesh mesh, const BuildSettings& settings) {
   AdbTree tree(mesh, settings);
   MassProperties mass = computeMassProperties(mesh);
-  return std::make_shared<const MeshData>(MeshData{std::move(mesh), std::move(tree), mass});
+  const int facing = facingOf(mesh, mass);
+  return std::make_shared<const MeshData>(
+      MeshData{std::move(mesh), std::move(tree), mass, facing});
 }
 
 MeshShape::MeshShape(std::shared_ptr<const MeshData> data) : m_data(std::move(data)) {

@@ -1,29 +1,65 @@
 // MeshMeshAlgorithm: Bullet's collision algorithm for a pair of MeshShapes, and the one call
 // that registers adb with a dispatcher.
 //
-// This first version answers each pair on its own with the tree's exact mode and turns the
-// intersecting triangle pairs into contacts (adb/core/triangle_contact.h); the frame budget
-// across all pairs and plausible contacts from probabilistic witnesses come next (issue 3).
+// Under adb::Dispatcher the pair is handed to the step's scheduler, which queries it within
+// the step's budget (adb/bullet/frame_budget.h) and then has it write its contacts: exact
+// ones from intersecting triangle pairs, plausible ones from node pairs the budget left
+// unresolved. Elsewhere (a plain btCollisionDispatcher, contactTest/contactPairTest, a mesh
+// inside a compound) the pair is answered at once in exact mode.
 #pragma once
 
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 
+#include <cstdint>
+#include <vector>
+
+#include "adb/bullet/frame_budget.h"
 #include "adb/bullet/manifold_algorithm.h"
 #include "adb/core/query.h"
 
 namespace adb {
 
+namespace detail {
+class FrameScheduler;
+struct DeferredPair;
+}  // namespace detail
+
+/// Contact points one pair wrote in a step.
+struct ContactCount {
+  std::uint32_t exact = 0;
+  std::uint32_t plausible = 0;
+};
+
 class MeshMeshAlgorithm : public ManifoldAlgorithm {
  public:
-  using ManifoldAlgorithm::ManifoldAlgorithm;
+  MeshMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                    const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                    bool swapped);
 
   void processCollision(const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                         btManifoldResult* result) override;
 
+  // --- used by the scheduler -------------------------------------------------------------
+  /// Queries the deferred pair with `settings`; the evidence stays in this pair's scratch.
+  QueryResult query(const detail::DeferredPair& pair, const QuerySettings& settings);
+  /// Writes the contacts of the last query into the pair's manifold.
+  ContactCount writeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
+  /// Node pairs the last query that finished needed: the next step's first grant.
+  std::uint64_t needed() const { return m_needed; }
+  /// The node pairs the last query left unresolved (empty when it completed).
+  const std::vector<OpenPair>& openPairs() const { return m_scratch.openPairs(); }
+
  private:
+  ContactCount addContacts(const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, btManifoldResult& result,
+                           const FrameSettings& settings);
+
   QueryScratch m_scratch;  // grows to this pair's largest query, then stays
+  QueryResult m_last;      // the last query's result
+  detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
+  std::uint64_t m_needed = 0;
 };
 
 /// Bytes a dispatcher's algorithm pool must hold per element for adb's algorithms: pass it

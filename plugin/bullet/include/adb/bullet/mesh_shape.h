@@ -23,6 +23,9 @@ struct MeshData {
   TriangleMesh mesh;
   AdbTree tree;
   MassProperties mass;
+  /// Which way the triangles face: +1 closed and wound outward, -1 closed and wound inward,
+  /// 0 open (its triangles are two-sided to contact generation).
+  int facing = 0;
 
   /// Builds the tree and the mass properties (throws MeshError/SettingsError at the door).
   static std::shared_ptr<const MeshData> build(TriangleMesh mesh,

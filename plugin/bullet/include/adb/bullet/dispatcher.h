@@ -1,0 +1,52 @@
+// adb::Dispatcher: a btCollisionDispatcher that registers adb's algorithms and spends a
+// per-step budget across all mesh-mesh pairs of the step (adb/bullet/frame_budget.h).
+//
+// Bullet dispatches pairs one after another, so a budget spent inside each algorithm would
+// go first come, first served. Here the mesh-mesh algorithms only note their pair while
+// Bullet dispatches; when the dispatch is over, the scheduler spends the step's budget where
+// the uncertainty is largest and writes every pair's manifold, before the solver runs.
+// Other pairs (mesh-plane, mesh-convex, ...) are processed by Bullet's dispatch as usual.
+// contactTest/contactPairTest, and mesh pairs inside compounds, are answered immediately and
+// exactly, outside the budget.
+#pragma once
+
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+
+#include <memory>
+
+#include "adb/bullet/frame_budget.h"
+#include "adb/bullet/precision.h"
+
+namespace adb {
+
+namespace detail {
+class FrameScheduler;
+}
+
+class Dispatcher : public btCollisionDispatcher {
+ public:
+  /// Registers adb's algorithms on itself (adb::registerAlgorithms): `configuration` must
+  /// have been made from adb::collisionConstructionInfo() (throws SettingsError otherwise).
+  explicit Dispatcher(btDefaultCollisionConfiguration* configuration);
+  ~Dispatcher() override;
+
+  /// Throws SettingsError naming the first invalid field (NaN or negative budget, pMin or
+  /// pAccept outside [0, 1], kMin < 0, maxPlausibleContacts < 0, softCfm < 0 or NaN).
+  void setFrameSettings(const FrameSettings& settings);
+  const FrameSettings& frameSettings() const { return m_settings; }
+  /// Statistics of the last step's mesh-mesh pairs.
+  const FrameStats& lastFrameStats() const;
+
+  void dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
+                                 const btDispatcherInfo& info, btDispatcher* dispatcher) override;
+
+  /// Internal: the scheduler mesh-mesh algorithms hand their pair to during a dispatch.
+  detail::FrameScheduler& scheduler() { return *m_scheduler; }
+
+ private:
+  FrameSettings m_settings;
+  std::unique_ptr<detail::FrameScheduler> m_scheduler;
+};
+
+}  // namespace adb

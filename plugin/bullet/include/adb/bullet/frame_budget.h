@@ -1,0 +1,63 @@
+// FrameSettings and FrameStats: the per-step budget adb::Dispatcher spends on mesh-mesh pairs,
+// the quality knobs of the pair queries and contacts, and what a step actually did.
+//
+// Policy (docs/bullet-budget.md has the measurements): every mesh-mesh pair of the step is
+// first given a share of the budget (what it needed last step, at most an even share of what
+// is left); then, while budget is left, the pair whose contacts are least certain is re-run
+// with twice its previous grant. A pair is certain when its traversal completed (every
+// overlapping triangle pair tested: exact contacts) or reached the quality target (k_min
+// node pairs above p_min). Pairs the budget cut get plausible contacts from their unresolved
+// node pairs with probability >= pAccept. Re-running from scratch wastes at most half of a
+// pair's final grant (the doubling), and keeps every query a pure function of its grant:
+// with a node-pair budget, a step is reproducible bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+namespace adb {
+
+struct FrameSettings {
+  /// Wall-clock budget per step for all mesh-mesh pairs, in microseconds; infinity for none.
+  /// 0 is valid: every pair gets its roots tested and no mesh-mesh contact.
+  double budgetMicros = std::numeric_limits<double>::infinity();
+  /// Node pairs per step for all mesh-mesh pairs: the reproducible budget. Every pair's
+  /// roots are always tested, so a step evaluates at most max(budget, pairs) node pairs.
+  std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
+  /// A node pair with probability above pMin counts towards kMin (the paper's collision pair).
+  double pMin = 0.99;
+  /// Stop refining a pair once kMin node pairs are above pMin (paper Fig. 3) and give it
+  /// plausible contacts. 0 (the default) never stops on quality: pairs are refined to exact
+  /// contacts as far as the budget allows, which is what resting contact needs.
+  int kMin = 0;
+  /// An unresolved node pair becomes a plausible contact when its probability is >= pAccept.
+  double pAccept = 0.9;
+  /// Plausible contacts per pair at most (the most probable first; the manifold keeps 4).
+  int maxPlausibleContacts = 8;
+  /// Soften plausible contacts by their probability p through the per-point ERP (p times
+  /// Bullet's default 0.8) and CFM (softCfm * (1 - p) / (1 - pAccept)): an uncertain contact
+  /// pushes less hard. Exact contacts are never softened.
+  bool softenPlausible = true;
+  double softCfm = 1e-3;
+};
+
+/// What the last step did with the mesh-mesh pairs it met.
+struct FrameStats {
+  std::uint32_t pairs = 0;          ///< mesh-mesh pairs whose boxes overlapped
+  std::uint32_t exactPairs = 0;     ///< decided exactly: traversal completed
+  std::uint32_t qualityPairs = 0;   ///< stopped at the quality target (k_min above p_min)
+  std::uint32_t cutPairs = 0;       ///< cut by the budget: plausible contacts where p >= pAccept
+  std::uint32_t queries = 0;        ///< pair queries run (a pair re-run counts again)
+  std::uint64_t nodePairs = 0;      ///< node pairs evaluated, all queries of the step
+  std::uint32_t exactContacts = 0;  ///< contact points from intersecting triangle pairs
+  std::uint32_t plausibleContacts = 0;  ///< contact points from unresolved node pairs
+  double micros = 0.0;              ///< wall clock of the step's pair work, contacts included
+  double contactMicros = 0.0;       ///< of which writing contacts (after the queries)
+  /// Per pair: 1 when decided exactly; the quality answer's confidence when stopped on
+  /// quality; otherwise 1 - min(1, sum of Pr[X >= 1] over its unresolved node pairs), the
+  /// chance that no intersecting triangle pair is left unseen.
+  double meanConfidence = 1.0;
+  double worstConfidence = 1.0;
+};
+
+}  // namespace adb

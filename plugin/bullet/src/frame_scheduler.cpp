@@ -1,0 +1,168 @@
+// FrameScheduler: one step's budget spent across its mesh-mesh pairs, then their contacts.
+#include "frame_scheduler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "adb/bullet/mesh_mesh_algorithm.h"
+
+namespace adb::detail {
+namespace {
+
+// The first grant of a pair never seen decided: a few levels of both trees. Smaller grants
+// would mostly be re-run; larger ones starve the other pairs of a tight budget.
+constexpr std::uint64_t kFirstGrant = 256;
+// A re-run gets at least this many node pairs more than before: doubling from tiny grants
+// would spend the step on restarts.
+constexpr std::uint64_t kMinGrowth = 64;
+constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+
+bool unbudgeted(const FrameSettings& s) {
+  return s.budgetNodePairs == kUnlimited && std::isinf(s.budgetMicros);
+}
+
+// Doubt left in a cut query: Pr[X >= 1] summed over its unresolved node pairs (an upper
+// bound on the chance that one of them holds an intersecting triangle pair).
+double doubtOf(const std::vector<OpenPair>& open) {
+  double doubt = 0.0;
+  for (const OpenPair& o : open) doubt += static_cast<double>(o.upper);
+  return std::min(1.0, doubt);
+}
+
+}  // namespace
+
+void FrameScheduler::begin() {
+  m_pairs.clear();
+  m_collecting = true;
+}
+
+void FrameScheduler::run(const FrameSettings& settings) {
+  m_collecting = false;
+  m_start = Clock::now();
+  m_stats = FrameStats{};
+  m_stats.pairs = static_cast<std::uint32_t>(m_pairs.size());
+  firstPass(settings);
+  refine(settings);
+  writeContacts(settings);
+  m_stats.micros = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
+}
+
+std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
+  if (s.budgetNodePairs == kUnlimited) return kUnlimited;
+  return s.budgetNodePairs > m_stats.nodePairs ? s.budgetNodePairs - m_stats.nodePairs : 0;
+}
+
+double FrameScheduler::microsLeft(const FrameSettings& s) const {
+  if (std::isinf(s.budgetMicros)) return s.budgetMicros;
+  const double used = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
+  // The contact writing that follows is part of the step: last step's cost is held back.
+  return std::max(0.0, s.budgetMicros - m_contactMicros - used);
+}
+
+void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micros,
+                           const FrameSettings& settings) {
+  QuerySettings q;
+  if (unbudgeted(settings)) {
+    // Nothing to share: exact mode is the cheapest complete traversal (a box-and-slab test
+    // per node pair instead of a probability).
+    q.mode = QueryMode::Exact;
+  } else {
+    q.mode = QueryMode::Adb;
+    q.pMin = settings.pMin;
+    q.kMin = settings.kMin > 0 ? settings.kMin : std::numeric_limits<int>::max();
+    q.pruneImprobable = false;  // complete means exact; cut leaves every open pair
+    q.budgetNodePairs = grant;
+    q.budgetMicros = micros;
+  }
+  q.stopAtFirstHit = false;
+  const QueryResult r = pair.algorithm->query(pair, q);
+  pair.grant = grant;
+  pair.stop = r.stop;
+  ++m_stats.queries;
+  m_stats.nodePairs += r.nodePairs;
+  switch (r.stop) {
+    case StopReason::Completed:
+      pair.decided = true;
+      pair.confidence = 1.0;
+      break;
+    case StopReason::QualityReached:
+      pair.decided = true;
+      pair.confidence = r.confidence;
+      break;
+    default:
+      pair.decided = false;
+      pair.confidence = 1.0 - doubtOf(pair.algorithm->openPairs());
+      break;
+  }
+}
+
+// Every pair gets what it needed last step, at most an even share of what is left, so a
+// tight budget still reaches every pair before any is refined.
+void FrameScheduler::firstPass(const FrameSettings& settings) {
+  const std::size_t n = m_pairs.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    DeferredPair& pair = m_pairs[i];
+    const std::uint64_t waiting = n - i;
+    const std::uint64_t needed =
+        pair.algorithm->needed() > 0 ? pair.algorithm->needed() : kFirstGrant;
+    const std::uint64_t left = nodePairsLeft(settings);
+    const std::uint64_t grant = left == kUnlimited ? needed : std::min(needed, left / waiting);
+    query(pair, grant, microsLeft(settings) / static_cast<double>(waiting), settings);
+  }
+}
+
+// While budget is left, the least certain pair is re-run with twice its grant (ties: the
+// earlier pair, so that node-pair budgets stay reproducible).
+void FrameScheduler::refine(const FrameSettings& settings) {
+  m_order.clear();
+  for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
+    if (!m_pairs[i].decided) m_order.push_back(i);
+  }
+  const auto moreCertain = [this](std::uint32_t x, std::uint32_t y) {
+    const double cx = m_pairs[x].confidence, cy = m_pairs[y].confidence;
+    return cx != cy ? cx > cy : x > y;
+  };
+  std::make_heap(m_order.begin(), m_order.end(), moreCertain);
+  while (!m_order.empty()) {
+    std::pop_heap(m_order.begin(), m_order.end(), moreCertain);
+    DeferredPair& pair = m_pairs[m_order.back()];
+    m_order.pop_back();
+    const std::uint64_t left = nodePairsLeft(settings);
+    const double micros = microsLeft(settings);
+    const std::uint64_t wanted = std::max(2 * pair.grant, pair.grant + kMinGrowth);
+    const std::uint64_t grant = std::min(wanted, left);
+    // A re-run that cannot go further than the last one would only repeat it.
+    if (grant <= pair.grant || !(micros > 0.0)) continue;
+    query(pair, grant, micros, settings);
+    if (!pair.decided) {
+      m_order.push_back(static_cast<std::uint32_t>(&pair - m_pairs.data()));
+      std::push_heap(m_order.begin(), m_order.end(), moreCertain);
+    }
+  }
+}
+
+void FrameScheduler::writeContacts(const FrameSettings& settings) {
+  const Clock::time_point start = Clock::now();
+  double confidenceSum = 0.0;
+  for (DeferredPair& pair : m_pairs) {
+    const ContactCount c = pair.algorithm->writeContacts(pair, settings);
+    m_stats.exactContacts += c.exact;
+    m_stats.plausibleContacts += c.plausible;
+    confidenceSum += pair.confidence;
+    m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
+    if (pair.stop == StopReason::Completed) {
+      ++m_stats.exactPairs;
+    } else if (pair.stop == StopReason::QualityReached) {
+      ++m_stats.qualityPairs;
+    } else {
+      ++m_stats.cutPairs;
+    }
+  }
+  if (!m_pairs.empty()) confidenceSum /= static_cast<double>(m_pairs.size());
+  m_stats.meanConfidence = m_pairs.empty() ? 1.0 : confidenceSum;
+  m_contactMicros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  m_stats.contactMicros = m_contactMicros;
+}
+
+}  // namespace adb::detail

@@ -1,0 +1,65 @@
+// Internal: FrameScheduler, which collects the mesh-mesh pairs of a step while Bullet
+// dispatches and then spends the step's budget across them (policy: adb/bullet/frame_budget.h).
+#pragma once
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <LinearMath/btTransform.h>
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "adb/bullet/frame_budget.h"
+#include "adb/core/query.h"
+
+namespace adb {
+class MeshMeshAlgorithm;
+}
+
+namespace adb::detail {
+
+/// A mesh-mesh pair noted during the dispatch: enough to rebuild Bullet's wrappers and
+/// result afterwards (the dispatch's own live on its stack), and the pair's scheduling state.
+struct DeferredPair {
+  MeshMeshAlgorithm* algorithm;
+  const btCollisionObject* object0;
+  const btCollisionObject* object1;
+  btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
+  int partId0, index0, partId1, index1;
+  // Scheduling state of this step.
+  std::uint64_t grant = 0;     // node pairs granted to the last query
+  double confidence = 0.0;     // see FrameStats::meanConfidence
+  bool decided = false;        // completed or stopped on quality
+  StopReason stop = StopReason::Completed;
+};
+
+class FrameScheduler {
+ public:
+  /// Starts a step: pairs noted from now on are scheduled by run().
+  void begin();
+  bool collecting() const { return m_collecting; }
+  void defer(const DeferredPair& pair) { m_pairs.push_back(pair); }
+  /// Spends the budget across the noted pairs, writes their manifolds, ends the step.
+  void run(const FrameSettings& settings);
+  const FrameStats& stats() const { return m_stats; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  void firstPass(const FrameSettings& settings);
+  void refine(const FrameSettings& settings);
+  void query(DeferredPair& pair, std::uint64_t grant, double micros,
+             const FrameSettings& settings);
+  void writeContacts(const FrameSettings& settings);
+  std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
+  double microsLeft(const FrameSettings& settings) const;
+
+  std::vector<DeferredPair> m_pairs;  // reused: no allocation in steady state
+  std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
+  FrameStats m_stats;
+  Clock::time_point m_start;
+  double m_contactMicros = 0.0;  // last step's contact writing: held back from the queries
+  bool m_collecting = false;
+};
+
+}  // namespace adb::detail

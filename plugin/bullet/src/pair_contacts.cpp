@@ -1,0 +1,172 @@
+// Contact points of a mesh-mesh pair: exact ones from triangle pairs, plausible ones from
+// unresolved node pairs. docs/bullet-budget.md explains the plausible estimate; in short:
+//  - normal: the two patches' mean normals, each weighted by how flat its patch is
+//    (coherence), A's outward normal and B's inward one averaged; where both patches are
+//    curved (the weights cancel) the step's separation hint decides. Mean normals are area
+//    integrals over many triangles, so they change little from step to step: stable.
+//  - depth: how far B's patch centroid lies behind A's along that normal, clamped to [0, the
+//    smaller patch's extent along it]: a believed contact is never reported as separated,
+//    and a coarse pair cannot push further than its own size.
+//  - point: between the two centroids, so that point on A = point on B + depth * normal.
+#include "pair_contacts.h"
+
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "adb/core/triangle_contact.h"
+#include "conversions.h"
+
+namespace adb::detail {
+namespace {
+
+// Below this length the weighted normal is rounding or cancellation, not a direction.
+constexpr double kMinNormalLength = 0.25;
+// Bullet's default contact ERP (btContactSolverInfo::m_erp2): a plausible contact with
+// probability p corrects p times as much of its depth per step.
+constexpr double kDefaultContactErp = 0.8;
+
+Vec3 toWorldPoint(const Pose& pose, const AdbTree& tree, const float local[3]) {
+  const Vec3 p(local[0], local[1], local[2]);
+  return pose.rotation * (p + tree.origin()) + pose.translation;
+}
+
+Vec3 toWorldDirection(const Pose& pose, const float local[3]) {
+  return pose.rotation * Vec3(local[0], local[1], local[2]);
+}
+
+// Half the extent of a node's box along a world direction.
+double halfExtentAlong(const Pose& pose, const Node& node, const Vec3& direction) {
+  const Vec3 local = pose.rotation.transpose() * direction;
+  const Vec3 half = 0.5 * (node.boxHi() - node.boxLo());
+  return local.cwiseAbs().dot(half);
+}
+
+struct PlausibleContact {
+  Vec3 pointOnB;
+  Vec3 normal;  // from A towards B
+  double depth;
+};
+
+PlausibleContact plausibleContact(const PosedPair& pair, const OpenPair& o, const Vec3& hint) {
+  const NodeSurface& sa = pair.a->surfaces()[o.a];
+  const NodeSurface& sb = pair.b->surfaces()[o.b];
+  const Vec3 ca = toWorldPoint(pair.poseA, *pair.a, sa.centroid);
+  const Vec3 cb = toWorldPoint(pair.poseB, *pair.b, sb.centroid);
+  // A's outward normal points towards B, B's points towards A: both say "A to B" as na - nb.
+  Vec3 n = static_cast<double>(sa.coherence) * toWorldDirection(pair.poseA, sa.normal) -
+           static_cast<double>(sb.coherence) * toWorldDirection(pair.poseB, sb.normal);
+  double length = n.norm();
+  if (!(length > kMinNormalLength)) {
+    n = hint;
+    length = n.norm();
+  }
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    n = Vec3::UnitY();  // no evidence at all: any unit direction keeps the output finite
+    length = 1.0;
+  }
+  n /= length;
+  const double extent = std::min(halfExtentAlong(pair.poseA, pair.a->nodes()[o.a], n),
+                                 halfExtentAlong(pair.poseB, pair.b->nodes()[o.b], n));
+  const double depth = std::clamp((ca - cb).dot(n), 0.0, std::max(0.0, 2.0 * extent));
+  const Vec3 middle = 0.5 * (ca + cb);
+  return {middle - 0.5 * depth * n, n, depth};
+}
+
+// A triangle of a closed mesh faces away from the normal when its outward normal points
+// along it by more than this cosine (about 72 degrees from perpendicular): grazing and
+// edge-on triangles stay, backs are dropped.
+constexpr double kFacingAway = 0.3;
+
+// Whether triangle t (world) of a mesh with `facing` turns its back on `direction`.
+bool facesAway(const Vec3 t[3], int facing, const Vec3& direction) {
+  if (facing == 0) return false;  // open: two-sided
+  const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
+  const double length = n.norm();
+  if (!(length > 0.0)) return false;  // degenerate: no side to turn
+  return static_cast<double>(facing) * n.dot(direction) > kFacingAway * length;
+}
+
+// The manifold point btManifoldResult just wrote for `pointOnB`, or nullptr when it refused it
+// (beyond the breaking threshold). btManifoldResult does not return its index.
+btManifoldPoint* findPoint(btPersistentManifold& manifold, const btVector3& pointOnB) {
+  for (int i = 0; i < manifold.getNumContacts(); ++i) {
+    btManifoldPoint& p = manifold.getContactPoint(i);
+    if (p.m_positionWorldOnB == pointOnB) return &p;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCentre0,
+                    const btVector3& boxCentre1) {
+  Vec3 sum = Vec3::Zero();
+  if (manifold) {
+    // Bullet's normal on B points from body 1 towards body 0: the hint is its opposite.
+    for (int i = 0; i < manifold->getNumContacts(); ++i) {
+      sum -= fromBt(manifold->getContactPoint(i).m_normalWorldOnB);
+    }
+  }
+  if (sum.squaredNorm() > 0.0 && sum.allFinite()) return sum;
+  return fromBt(boxCentre1 - boxCentre0);
+}
+
+std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>& witnesses,
+                               const Vec3& hint, btManifoldResult& out) {
+  std::uint32_t written = 0;
+  for (const Witness& w : witnesses) {
+    if (!w.isExact()) continue;
+    Vec3 a[3], b[3];
+    worldTriangle(*pair.a, pair.poseA, w.triangleA, a);
+    worldTriangle(*pair.b, pair.poseB, w.triangleB, b);
+    const TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
+    if (!c.valid) continue;
+    // B is pushed along +normal: A's surface must face it, B's must face back.
+    if (facesAway(a, pair.facingA, -c.normal) || facesAway(b, pair.facingB, c.normal)) continue;
+    // Bullet: the normal on B points from body 1 towards body 0, the point lies on body 1,
+    // and a negative distance is a penetration.
+    out.addContactPoint(toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth));
+    ++written;
+  }
+  return written;
+}
+
+std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<OpenPair>& open,
+                                   const FrameSettings& settings, const Vec3& hint,
+                                   btManifoldResult& out, btPersistentManifold& manifold) {
+  // The most probable pairs, kept sorted in a fixed buffer: no allocation per step.
+  const int limit = std::clamp(settings.maxPlausibleContacts, 0, kMaxPlausibleContacts);
+  std::array<OpenPair, kMaxPlausibleContacts> best;
+  int count = 0;
+  for (const OpenPair& o : open) {
+    // The roots' entry carries no estimate (the traversal seeds it at 1): not evidence.
+    if (o.a == 0 && o.b == 0) continue;
+    if (!(o.p >= settings.pAccept)) continue;
+    if (count == limit && (count == 0 || o.p <= best[count - 1].p)) continue;
+    int i = count < limit ? count++ : count - 1;
+    for (; i > 0 && best[i - 1].p < o.p; --i) best[i] = best[i - 1];
+    best[i] = o;
+  }
+  const double certain = 1.0 - settings.pAccept;
+  for (int i = 0; i < count; ++i) {
+    const PlausibleContact c = plausibleContact(pair, best[i], hint);
+    const btVector3 pointOnB = toBt(c.pointOnB);
+    out.addContactPoint(toBt(-c.normal), pointOnB, static_cast<btScalar>(-c.depth));
+    if (!settings.softenPlausible) continue;
+    btManifoldPoint* point = findPoint(manifold, pointOnB);
+    if (!point) continue;
+    const double p = std::clamp(static_cast<double>(best[i].p), 0.0, 1.0);
+    point->m_contactERP = static_cast<btScalar>(kDefaultContactErp * p);
+    // (1 - p) / (1 - pAccept) runs from 1 at the threshold to 0 when certain; guarded for
+    // pAccept = 1, where only p = 1 is accepted and nothing is softened.
+    point->m_contactCFM =
+        static_cast<btScalar>(certain > 0.0 ? settings.softCfm * (1.0 - p) / certain : 0.0);
+    point->m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_CFM | BT_CONTACT_FLAG_HAS_CONTACT_ERP;
+  }
+  return static_cast<std::uint32_t>(count);
+}
+
+}  // namespace adb::detail

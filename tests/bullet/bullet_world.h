@@ -1,0 +1,86 @@
+// Test support: a btDiscreteDynamicsWorld with adb's algorithms that owns what it creates,
+// stepping, and a hash of the bodies' state for reproducibility checks.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "adb/bullet/dispatcher.h"
+#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "adb/bullet/mesh_shape.h"
+
+namespace adb::test {
+
+/// Which dispatcher the world uses: adb's (budgeted, scheduled) or Bullet's own with adb's
+/// algorithms registered on it (each pair answered at once, exactly).
+enum class Dispatch { Adb, Plain };
+
+struct World {
+  std::unique_ptr<btDefaultCollisionConfiguration> configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  Dispatcher* adbDispatcher = nullptr;  // the same object under Dispatch::Adb
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  std::unique_ptr<btDiscreteDynamicsWorld> world;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+
+  explicit World(Dispatch dispatch = Dispatch::Adb, const FrameSettings& frame = {}) {
+    configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
+    if (dispatch == Dispatch::Adb) {
+      auto d = std::make_unique<Dispatcher>(configuration.get());
+      d->setFrameSettings(frame);
+      adbDispatcher = d.get();
+      dispatcher = std::move(d);
+    } else {
+      dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
+      registerAlgorithms(*dispatcher, *configuration);
+    }
+    world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), &broadphase, &solver,
+                                                       configuration.get());
+    world->setGravity(btVector3(0, -10, 0));
+  }
+  ~World() {
+    for (auto& b : bodies) world->removeRigidBody(b.get());
+  }
+
+  btRigidBody* add(std::shared_ptr<const MeshData> data, btScalar mass, const btVector3& at) {
+    return add(std::make_unique<MeshShape>(std::move(data)), mass, at);
+  }
+
+  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, btScalar mass, const btVector3& at) {
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo ci(mass, nullptr, shape.get(), inertia);
+    ci.m_startWorldTransform.setOrigin(at);
+    auto body = std::make_unique<btRigidBody>(ci);
+    world->addRigidBody(body.get());
+    shapes.push_back(std::move(shape));
+    bodies.push_back(std::move(body));
+    return bodies.back().get();
+  }
+
+  /// One fixed step of 1/60 s.
+  void step() { world->stepSimulation(btScalar(1.0 / 60), 1, btScalar(1.0 / 60)); }
+};
+
+/// FNV-1a over the bytes of every body's transform and velocities.
+inline std::uint64_t hashBodies(const std::vector<std::unique_ptr<btRigidBody>>& bodies) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&](const void* p, std::size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
+  };
+  for (const auto& b : bodies) {
+    const btTransform& t = b->getWorldTransform();
+    mix(&t, sizeof(t));
+    mix(&b->getLinearVelocity(), sizeof(btVector3));
+    mix(&b->getAngularVelocity(), sizeof(btVector3));
+  }
+  return h;
+}
+
+}  // namespace adb::test
