@@ -11,4 +11,4 @@ cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 cmake -S "$source/tests/install/consumer" -B "$work/consumer" \
   -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"
-"$work/consumer/consumer"
+"$work/consumer/consumer" "$work"

@@ -1,0 +1,45 @@
+// Mesh files: loadMesh reads any format assimp reads into one validated adb::TriangleMesh.
+//
+// The whole scene graph is flattened (node transforms applied, an instanced mesh once per
+// instance), polygons are triangulated, and only positions are kept: a collision mesh needs
+// nothing else. Nothing is repaired silently: bad data (NaN/infinite coordinates, out-of-range
+// indices, no triangles) is an error, and what assimp only warns about (a missing material
+// file, say) is handed back in LoadReport::warnings.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "adb/core/mesh.h"
+
+namespace adb::io {
+
+/// One error type for files: what() names the file and what is wrong (and where, e.g. the vertex).
+class MeshFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What a successful load found besides the mesh.
+struct LoadReport {
+  /// assimp's warnings and errors during the load (e.g. a missing material / texture file:
+  /// the mesh still loads) and ours (skipped point/line primitives, meshes no node uses).
+  std::vector<std::string> warnings;
+  std::size_t sourceMeshes = 0;  ///< assimp meshes merged, once per instance in the scene graph
+  std::size_t triangles = 0;     ///< of the loaded mesh
+  std::size_t vertices = 0;      ///< of the loaded mesh (positions welded per source mesh)
+};
+
+/// Reads any format assimp reads (OBJ, STL, PLY, glTF, OFF, ...), triangulates, applies every
+/// node transform (the whole scene graph, instanced meshes counted once per instance), merges
+/// into one adb::TriangleMesh (named by the file) validated by the core.
+/// Throws MeshFileError for: missing/unreadable file, a file assimp cannot parse, a file with
+/// no triangles (points/lines only or empty), NaN/inf coordinates (message names the file and
+/// the vertex, re-wrapping the core's adb::MeshError), out-of-range indices.
+/// Thread-safe: concurrent calls are serialised (assimp's logger is one per process; see
+/// src/assimp_log_capture.h).
+adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report = nullptr);
+
+}  // namespace adb::io
