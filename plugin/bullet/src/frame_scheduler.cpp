@@ -17,6 +17,9 @@ constexpr std::uint64_t kFirstGrant = 256;
 // would spend the step on restarts.
 constexpr std::uint64_t kMinGrowth = 64;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+// Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
+// count most, one odd step does not swing the next step's shares.
+constexpr double kSmoothing = 0.2;
 
 bool unbudgeted(const FrameSettings& s) {
   return s.budgetNodePairs == kUnlimited && std::isinf(s.budgetMicros);
@@ -56,8 +59,24 @@ std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
 double FrameScheduler::microsLeft(const FrameSettings& s) const {
   if (std::isinf(s.budgetMicros)) return s.budgetMicros;
   const double used = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
-  // The contact writing that follows is part of the step: last step's cost is held back.
-  return std::max(0.0, s.budgetMicros - m_contactMicros - used);
+  // The contact writing that follows is part of the step: its expected cost is held back.
+  const double contacts = m_contactMicrosPerPair * static_cast<double>(m_pairs.size());
+  return std::max(0.0, s.budgetMicros - contacts - used);
+}
+
+// A pair's even share of what is left, in node pairs. A time budget is shared as node pairs
+// through the measured cost of one: a query given a tiny time share would overshoot it by a
+// whole clock interval (the traversal reads the clock every 64 units of work), and hundreds
+// of pairs would overshoot the step by hundreds of intervals.
+std::uint64_t FrameScheduler::share(const FrameSettings& s, std::uint64_t waiting) const {
+  std::uint64_t left = nodePairsLeft(s);
+  if (left != kUnlimited) left /= waiting;
+  const double micros = microsLeft(s);
+  if (!std::isinf(micros)) {
+    const double byTime = micros / m_microsPerNodePair / static_cast<double>(waiting);
+    left = std::min(left, static_cast<std::uint64_t>(std::max(0.0, byTime)));
+  }
+  return left;
 }
 
 void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micros,
@@ -77,6 +96,10 @@ void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micro
   }
   q.stopAtFirstHit = false;
   const QueryResult r = pair.algorithm->query(pair, q);
+  if (r.nodePairs >= kFirstGrant && r.seconds > 0.0) {  // long enough to measure
+    const double perPair = r.seconds * 1e6 / static_cast<double>(r.nodePairs);
+    m_microsPerNodePair += kSmoothing * (perPair - m_microsPerNodePair);
+  }
   pair.grant = grant;
   pair.stop = r.stop;
   ++m_stats.queries;
@@ -106,9 +129,8 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
     const std::uint64_t waiting = n - i;
     const std::uint64_t needed =
         pair.algorithm->needed() > 0 ? pair.algorithm->needed() : kFirstGrant;
-    const std::uint64_t left = nodePairsLeft(settings);
-    const std::uint64_t grant = left == kUnlimited ? needed : std::min(needed, left / waiting);
-    query(pair, grant, microsLeft(settings) / static_cast<double>(waiting), settings);
+    // The time cap is what is left of the step: the share is in the grant.
+    query(pair, std::min(needed, share(settings, waiting)), microsLeft(settings), settings);
   }
 }
 
@@ -128,7 +150,7 @@ void FrameScheduler::refine(const FrameSettings& settings) {
     std::pop_heap(m_order.begin(), m_order.end(), moreCertain);
     DeferredPair& pair = m_pairs[m_order.back()];
     m_order.pop_back();
-    const std::uint64_t left = nodePairsLeft(settings);
+    const std::uint64_t left = share(settings, 1);
     const double micros = microsLeft(settings);
     const std::uint64_t wanted = std::max(2 * pair.grant, pair.grant + kMinGrowth);
     const std::uint64_t grant = std::min(wanted, left);
@@ -161,8 +183,12 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
   }
   if (!m_pairs.empty()) confidenceSum /= static_cast<double>(m_pairs.size());
   m_stats.meanConfidence = m_pairs.empty() ? 1.0 : confidenceSum;
-  m_contactMicros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
-  m_stats.contactMicros = m_contactMicros;
+  m_stats.contactMicros =
+      std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  if (!m_pairs.empty()) {
+    const double perPair = m_stats.contactMicros / static_cast<double>(m_pairs.size());
+    m_contactMicrosPerPair += kSmoothing * (perPair - m_contactMicrosPerPair);
+  }
 }
 
 }  // namespace adb::detail

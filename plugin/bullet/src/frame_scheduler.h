@@ -53,12 +53,16 @@ class FrameScheduler {
   void writeContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
   double microsLeft(const FrameSettings& settings) const;
+  std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting) const;
 
   std::vector<DeferredPair> m_pairs;  // reused: no allocation in steady state
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   FrameStats m_stats;
   Clock::time_point m_start;
-  double m_contactMicros = 0.0;  // last step's contact writing: held back from the queries
+  // Measured costs, smoothed over steps: they turn a time budget into node-pair shares and
+  // hold back the contact writing. Start values are this machine's order of magnitude.
+  double m_microsPerNodePair = 0.25;
+  double m_contactMicrosPerPair = 5.0;
   bool m_collecting = false;
 };
 

@@ -16,6 +16,7 @@
 #include <memory>
 
 #include "adb/bullet/frame_budget.h"
+#include "adb/bullet/mesh_mesh_algorithm.h"  // collisionConstructionInfo(), registration
 #include "adb/bullet/precision.h"
 
 namespace adb {
