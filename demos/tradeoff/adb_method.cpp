@@ -1,0 +1,45 @@
+// ADB and exact-mode queries on the shared per-model ADB-tree.
+#include "adb_method.h"
+
+namespace adb::tradeoff {
+
+const AdbTree& SharedTree::treeFor(const Model& model) {
+  // Keyed by the model's command-line position, not its address: a later model may be
+  // allocated where an earlier one was.
+  if (!m_tree || m_modelIndex != model.index) {
+    m_tree.reset();  // free the old tree before building the next (1M-triangle models)
+    m_tree = std::make_unique<AdbTree>(model.mesh);
+    m_modelIndex = model.index;
+  }
+  return *m_tree;
+}
+
+AdbMethod::AdbMethod(std::shared_ptr<SharedTree> shared, const QuerySettings& settings)
+    : m_shared(std::move(shared)),
+      m_settings(settings),
+      m_name(settings.mode == QueryMode::Exact ? "exact" : "adb") {
+  validate(m_settings);
+}
+
+MethodParams AdbMethod::params() const {
+  MethodParams p;
+  if (m_settings.mode != QueryMode::Adb) return p;
+  p.isAdb = true;
+  p.pMin = m_settings.pMin;
+  p.kMin = m_settings.kMin;
+  p.budgetUs = m_settings.budgetMicros;
+  return p;
+}
+
+void AdbMethod::prepare(const Model& model) { m_tree = &m_shared->treeFor(model); }
+
+Answer AdbMethod::query(const Pose& a, const Pose& b) {
+  const QueryResult r = collide(*m_tree, a, *m_tree, b, m_settings, m_shared->scratch());
+  Answer answer;
+  answer.collides = r.collides;
+  answer.confidence = r.confidence;
+  answer.nodePairs = static_cast<std::int64_t>(r.nodePairs);
+  return answer;
+}
+
+}  // namespace adb::tradeoff

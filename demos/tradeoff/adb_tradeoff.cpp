@@ -1,0 +1,106 @@
+// adb-tradeoff: what accuracy costs in time. Runs Zachmann's benchmark (two copies of each
+// model at a range of distances, seeded random orientations) through the ADB-tree's ADB
+// modes (sweeps of p_min, k_min and the time budget), its exact mode, Bullet's GImpact and
+// FCL, all on the same poses, and writes queries.csv (every query, poses at full precision),
+// summary.csv / summary.md (per model, method and parameters), cells.csv (the paper's
+// Fig. 8) and, through demos/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
+// shared/design/BENCHMARK.md. Timing policy: timing.h (also in --help).
+//
+// Exit status: 0 done, 2 usage error (nothing run), 1 input error (a mesh that cannot be
+// read or is invalid): models are processed in command-line order and the files describe
+// the models finished before the error.
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cell_histogram.h"
+#include "methods.h"
+#include "model_loader.h"
+#include "options.h"
+#include "plots.h"
+#include "progress.h"
+#include "query_csv.h"
+#include "report.h"
+#include "study.h"
+
+namespace {
+
+using namespace adb::tradeoff;
+
+constexpr int kInputError = 1;
+constexpr int kUsageError = 2;
+
+void printError(const std::string& message) {
+  std::fprintf(stderr, "adb-tradeoff: error: %s\n", message.c_str());
+}
+
+// Loads, measures and histograms one model; appends it to `done` and rewrites the reports.
+void studyModel(const Options& o, std::size_t index, StudyContext& context,
+                SharedTree& tree, std::vector<ModelResult>& done) {
+  std::vector<std::string> warnings;
+  const Model model = loadModel(o.sources[index], index, warnings);
+  for (const std::string& w : warnings) context.progress.note("adb-tradeoff: warning: " + w);
+  ModelResult result = runModel(model, context);
+  result.cells = cellHistogram(tree.treeFor(model));
+  done.push_back(std::move(result));
+  writeReports(o, done);
+}
+
+int run(const Options& o) {
+  std::error_code ec;
+  std::filesystem::create_directories(o.outDir, ec);
+  if (ec) {
+    printError("--out '" + o.outDir + "': cannot create the directory: " + ec.message());
+    return kInputError;
+  }
+  auto tree = std::make_shared<SharedTree>();
+  std::vector<std::unique_ptr<Method>> methods =
+      makeMethods(o.methods, o.pMins, o.kMins, o.budgetsUs, tree);
+  QueryCsv csv(o.outDir + "/queries.csv");
+  Progress progress(queriesPerModel(o, methods.size()) * o.sources.size());
+  StudyContext context{o, methods, csv, progress};
+  std::vector<ModelResult> done;
+  writeReports(o, done);  // headers only: the files exist even if the first model fails
+  for (std::size_t i = 0; i < o.sources.size(); ++i) {
+    try {
+      studyModel(o, i, context, *tree, done);
+    } catch (const std::exception& e) {
+      progress.finish();
+      printError(e.what());
+      std::fprintf(stderr, "adb-tradeoff: results of the %zu model(s) before it are in %s\n",
+                   done.size(), o.outDir.c_str());
+      return kInputError;
+    }
+  }
+  progress.finish();
+  std::fprintf(stderr, "adb-tradeoff: wrote %s/{queries.csv,summary.csv,summary.md,cells.csv}\n",
+               o.outDir.c_str());
+  if (o.plots) runPlotScript(o.outDir);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  try {
+    options = parseOptions(argc, argv);
+  } catch (const UsageError& e) {
+    printError(e.what());
+    std::fprintf(stderr, "run 'adb-tradeoff --help' for the options\n");
+    return kUsageError;
+  }
+  if (options.help) {
+    std::fputs(usageText().c_str(), stdout);
+    return 0;
+  }
+  try {
+    return run(options);
+  } catch (const std::exception& e) {  // output files that cannot be written, say
+    printError(e.what());
+    return kInputError;
+  }
+}

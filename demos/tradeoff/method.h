@@ -1,0 +1,52 @@
+// The one interface every measured method sits behind (ADB modes, exact mode, GImpact, FCL):
+// prepare its data structures for a model once, then answer posed queries of the model
+// against itself.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "adb/core/geometry.h"
+#include "adb/core/mesh.h"
+
+namespace adb::tradeoff {
+
+/// A model under study: its label (model name or file stem), its position on the command
+/// line (a unique key) and the mesh.
+struct Model {
+  std::string label;
+  std::size_t index = 0;
+  TriangleMesh mesh;
+};
+
+/// One method's answer to one query.
+struct Answer {
+  bool collides = false;
+  double confidence = 1.0;       ///< the method's estimate that the answer is right
+  std::int64_t nodePairs = -1;   ///< node pairs evaluated; -1 when the method cannot tell
+};
+
+/// The ADB parameters of a method (only ADB methods have them).
+struct MethodParams {
+  bool isAdb = false;
+  double pMin = 0.0;
+  int kMin = 0;
+  double budgetUs = std::numeric_limits<double>::infinity();  ///< infinity: no budget
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  /// "adb", "exact", "gimpact" or "fcl".
+  virtual const std::string& name() const = 0;
+  virtual MethodParams params() const { return {}; }
+  /// Builds what the method needs for `model` (untimed). Called once per model.
+  virtual void prepare(const Model& model) = 0;
+  /// Tests the prepared model at pose `a` against itself at pose `b`.
+  virtual Answer query(const Pose& a, const Pose& b) = 0;
+};
+
+}  // namespace adb::tradeoff

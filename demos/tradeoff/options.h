@@ -1,0 +1,59 @@
+// The command line of adb-tradeoff: what to measure (models, distances, rotations, methods,
+// ADB parameter sweeps), where to write it, and the strict parsing of every value (numbers,
+// lists, ranges a:b:step) with one clear error naming the flag and the value.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace adb::tradeoff {
+
+/// A usage error: a bad flag or value. main() prints it and exits 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One model to study, in command-line order: a mesh file or a generated model.
+struct ModelSource {
+  enum class Kind { File, Generated };
+  Kind kind = Kind::Generated;
+  std::string path;                ///< File: the mesh file
+  std::string name;                ///< Generated: the adb::gen::makeModel name
+  std::size_t targetTriangles = 0; ///< Generated: the requested triangle count
+};
+
+struct Options {
+  std::vector<ModelSource> sources;
+  std::vector<double> distances;   ///< benchmark units (adb::benchmarkUnit), ascending
+  int rotations = 200;             ///< random orientation pairs per distance
+  std::uint64_t seed = 1;
+  std::vector<std::string> methods{"adb", "exact", "gimpact", "fcl"};
+  std::vector<double> pMins{0.5, 0.9, 0.99};
+  std::vector<int> kMins{1, 5, 10};
+  std::vector<double> budgetsUs;   ///< microseconds; +infinity is "none"
+  std::string outDir = "tradeoff-results";
+  bool plots = true;
+  int repeats = 3;                 ///< timed runs per query (after one untimed warm-up)
+  bool help = false;
+  std::string commandLine;         ///< as given, for the summary
+};
+
+/// The generated-model triangle counts --model accepts.
+inline constexpr std::size_t kMinModelTriangles = 1000;
+inline constexpr std::size_t kMaxModelTriangles = 1000000;
+inline constexpr std::size_t kDefaultModelTriangles = 20000;
+
+/// Parses argv. Throws UsageError naming the flag and the offending value.
+Options parseOptions(int argc, const char* const* argv);
+
+/// The --help text (flags, defaults, timing policy).
+std::string usageText();
+
+/// Short file name without directory and extension ("meshes/bunny.ply" -> "bunny").
+std::string fileStem(const std::string& path);
+
+}  // namespace adb::tradeoff

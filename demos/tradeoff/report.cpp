@@ -1,0 +1,68 @@
+// Writing the summary and cell-histogram files.
+#include "report.h"
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "cell_histogram.h"
+#include "machine_note.h"
+#include "summary.h"
+
+namespace adb::tradeoff {
+namespace {
+
+std::string path(const Options& o, const char* name) { return o.outDir + "/" + name; }
+
+RunNotes notes(const Options& o, const std::vector<ModelResult>& done) {
+  RunNotes n;
+  n.lines.push_back("Command: `" + o.commandLine + "`  ");
+  n.lines.push_back("Machine: " + machineNote() + "  ");
+  n.lines.push_back("Poses: " + std::to_string(o.distances.size()) + " distances x " +
+                    std::to_string(o.rotations) + " rotations per model, seed " +
+                    std::to_string(o.seed) + "; the same poses for every method.  ");
+  n.lines.push_back("Timing: per query, one untimed warm-up run, then the fastest of " +
+                    std::to_string(o.repeats) +
+                    " timed runs (steady_clock around the call); mean and p95 over all "
+                    "queries of the row. Data structures built once per model, untimed. "
+                    "GImpact (collision margin 0, algorithm created once per model) computes full contact "
+                    "sets; the others stop at the first hit.");
+  n.lines.push_back("");
+  for (const ModelResult& r : done) {
+    std::string sampling;
+    if (r.cells.stride > 1) {
+      sampling = " (every " + std::to_string(r.cells.stride) +
+                 "th node of each level, counts scaled to the level)";
+    }
+    char buf[320];
+    std::snprintf(buf, sizeof buf, "Cell histogram (cells.csv) of %s: %zu of %zu nodes%s, %.2f s.  ",
+                  r.label.c_str(), r.cells.nodesCounted, r.cells.nodesTotal, sampling.c_str(),
+                  r.cells.seconds);
+    n.lines.push_back(buf);
+  }
+  return n;
+}
+
+void writeCells(const std::string& file, const std::vector<ModelResult>& done) {
+  std::ofstream out(file, std::ios::trunc);
+  if (!out) throw std::runtime_error("cannot write " + file);
+  out << kCellsCsvHeader << '\n';
+  for (const ModelResult& r : done) writeCellRows(out, r.label, r.triangles, r.cells);
+  out.flush();
+  if (!out) throw std::runtime_error("writing " + file + " failed");
+}
+
+}  // namespace
+
+void writeReports(const Options& options, const std::vector<ModelResult>& done) {
+  std::vector<SummaryRow> rows;
+  for (const ModelResult& r : done) {
+    const std::vector<SummaryRow> modelRows = summarize(r);
+    rows.insert(rows.end(), modelRows.begin(), modelRows.end());
+  }
+  writeSummaryCsv(path(options, "summary.csv"), rows);
+  writeSummaryMarkdown(path(options, "summary.md"), rows, notes(options, done));
+  writeCells(path(options, "cells.csv"), done);
+}
+
+}  // namespace adb::tradeoff

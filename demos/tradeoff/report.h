@@ -1,0 +1,16 @@
+// The files written from the finished models' results: summary.csv, summary.md and
+// cells.csv. Rewritten in full after every model, so that they always describe exactly the
+// models completed so far (a later failure keeps them).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "options.h"
+#include "results.h"
+
+namespace adb::tradeoff {
+
+void writeReports(const Options& options, const std::vector<ModelResult>& done);
+
+}  // namespace adb::tradeoff

@@ -1,0 +1,21 @@
+// timeQuery: warm-up, then the fastest of `repeats` timed runs (see timing.h).
+#include "timing.h"
+
+#include <chrono>
+
+namespace adb::tradeoff {
+
+TimedAnswer timeQuery(Method& method, const Pose& a, const Pose& b, int repeats) {
+  using Clock = std::chrono::steady_clock;
+  method.query(a, b);  // warm-up, untimed
+  TimedAnswer best;
+  for (int i = 0; i < repeats; ++i) {
+    const auto start = Clock::now();
+    const Answer answer = method.query(a, b);
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+    if (i == 0 || ns < best.nanoseconds) best = TimedAnswer{answer, ns};
+  }
+  return best;
+}
+
+}  // namespace adb::tradeoff

@@ -1,0 +1,78 @@
+// adb-tradeoff's flag parsing: ranges, lists, defaults, and errors naming flag and value.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "options.h"
+
+namespace adb::tradeoff {
+namespace {
+
+Options parse(std::vector<const char*> args) {
+  args.insert(args.begin(), "adb-tradeoff");
+  return parseOptions(static_cast<int>(args.size()), args.data());
+}
+
+std::string errorOf(std::vector<const char*> args) {
+  try {
+    parse(std::move(args));
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Options, DefaultsFollowTheIssue) {
+  const Options o = parse({"--model", "knot"});
+  ASSERT_EQ(o.sources.size(), 1u);
+  EXPECT_EQ(o.sources[0].name, "knot");
+  EXPECT_EQ(o.sources[0].targetTriangles, 20000u);
+  ASSERT_EQ(o.distances.size(), 17u);  // 0.4, 0.5, ..., 2.0
+  EXPECT_EQ(o.distances.front(), 0.4);
+  EXPECT_EQ(o.distances[3], 0.7);  // no 0.70000000000000007 from 0.4 + 3 * 0.1
+  EXPECT_EQ(o.distances.back(), 2.0);
+  EXPECT_EQ(o.rotations, 200);
+  EXPECT_EQ(o.methods, (std::vector<std::string>{"adb", "exact", "gimpact", "fcl"}));
+  EXPECT_EQ(o.kMins, (std::vector<int>{1, 5, 10}));
+  ASSERT_EQ(o.budgetsUs.size(), 4u);
+  EXPECT_TRUE(std::isinf(o.budgetsUs[0]));
+  EXPECT_EQ(o.budgetsUs[3], 100.0);
+  EXPECT_TRUE(o.plots);
+}
+
+TEST(Options, SourcesKeepCommandLineOrder) {
+  const Options o = parse({"--model", "torus:1000", "--mesh", "a/b.obj", "--model", "gears:5000"});
+  ASSERT_EQ(o.sources.size(), 3u);
+  EXPECT_EQ(o.sources[0].name, "torus");
+  EXPECT_EQ(o.sources[0].targetTriangles, 1000u);
+  EXPECT_EQ(o.sources[1].kind, ModelSource::Kind::File);
+  EXPECT_EQ(o.sources[1].path, "a/b.obj");
+  EXPECT_EQ(o.sources[2].targetTriangles, 5000u);
+  EXPECT_EQ(fileStem("a/b.obj"), "b");
+}
+
+TEST(Options, DistancesMixNumbersAndRanges) {
+  const Options o = parse({"--model", "knot", "--distances", "1.5,0.4:1.2:0.4", "--no-plots"});
+  EXPECT_EQ(o.distances, (std::vector<double>{0.4, 0.8, 1.2, 1.5}));
+  EXPECT_FALSE(o.plots);
+}
+
+TEST(Options, ErrorsNameTheFlagAndTheValue) {
+  EXPECT_NE(errorOf({"--model", "knot", "--distances", "2:0.4:0.1"}).find("--distances '2:0.4:0.1'"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--rotations", "-3"}).find("--rotations '-3'"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--p-min", "0.5,1.5"}).find("--p-min '1.5'"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--k-min", "0"}).find("--k-min '0'"), std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--budget-us", "abc"}).find("--budget-us 'abc'"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--methods", "adb,adb"}).find("twice"), std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot:2000000"}).find("--model 'knot:2000000'"), std::string::npos);
+  EXPECT_NE(errorOf({}).find("--mesh"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace adb::tradeoff

@@ -1,0 +1,60 @@
+// rootBoxesOverlap (the error-rate filter) against FCL's box-box test as an independent
+// oracle, on random poses around the touching distance, plus hand-made cases.
+#include <gtest/gtest.h>
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/narrowphase/collision.h>
+
+#include <cmath>
+#include <random>
+
+#include "adb/core/benchmark_poses.h"
+#include "root_overlap.h"
+
+namespace adb::tradeoff {
+namespace {
+
+const Aabb kBox{Vec3(-1.0, -0.5, 0.2), Vec3(2.0, 0.5, 0.6)};  // off-centre, unequal sides
+
+Pose rotZ(double angle, const Vec3& t) {
+  return Pose{Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix(), t};
+}
+
+TEST(RootOverlap, HandMadeCases) {
+  const Aabb cube{Vec3(-1, -1, -1), Vec3(1, 1, 1)};
+  EXPECT_TRUE(rootBoxesOverlap(cube, Pose{}, Pose{}));
+  EXPECT_TRUE(rootBoxesOverlap(cube, Pose{}, rotZ(0.0, Vec3(1.999, 0, 0))));
+  EXPECT_FALSE(rootBoxesOverlap(cube, Pose{}, rotZ(0.0, Vec3(2.001, 0, 0))));
+  // Turned 45 degrees: B reaches sqrt(2) along x.
+  const double reach = 1.0 + std::sqrt(2.0);
+  EXPECT_TRUE(rootBoxesOverlap(cube, Pose{}, rotZ(M_PI / 4, Vec3(reach - 1e-6, 0, 0))));
+  EXPECT_FALSE(rootBoxesOverlap(cube, Pose{}, rotZ(M_PI / 4, Vec3(reach + 1e-6, 0, 0))));
+}
+
+TEST(RootOverlap, AgreesWithFclBoxBoxOnRandomPoses) {
+  const Vec3 size = kBox.extent();
+  const auto box = std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> distance(0.2, 2.0);
+  int overlaps = 0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const PosePair p = benchmarkPoses(kBox, distance(rng), rng);
+    // FCL's box is centred on its frame: move the frame to the box centre.
+    fcl::Transform3d ta = fcl::Transform3d::Identity(), tb = fcl::Transform3d::Identity();
+    ta.linear() = p.a.rotation;
+    ta.translation() = p.a.rotation * kBox.center() + p.a.translation;
+    tb.linear() = p.b.rotation;
+    tb.translation() = p.b.rotation * kBox.center() + p.b.translation;
+    fcl::CollisionResultd result;
+    fcl::collide(box.get(), ta, box.get(), tb, fcl::CollisionRequestd(1, false), result);
+    const bool ours = rootBoxesOverlap(kBox, p.a, p.b);
+    EXPECT_EQ(ours, result.isCollision()) << "pose " << i;
+    overlaps += ours ? 1 : 0;
+  }
+  EXPECT_GT(overlaps, n / 10);
+  EXPECT_LT(overlaps, n - n / 10);
+}
+
+}  // namespace
+}  // namespace adb::tradeoff
