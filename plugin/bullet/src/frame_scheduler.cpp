@@ -91,6 +91,7 @@ void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micro
     q.pMin = settings.pMin;
     q.kMin = settings.kMin > 0 ? settings.kMin : std::numeric_limits<int>::max();
     q.pruneImprobable = false;  // complete means exact; cut leaves every open pair
+    q.nodeWitnesses = false;    // the 64 witness slots are for triangle pairs
     q.budgetNodePairs = grant;
     q.budgetMicros = micros;
   }
@@ -121,16 +122,26 @@ void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micro
 }
 
 // Every pair gets what it needed last step, at most an even share of what is left, so a
-// tight budget still reaches every pair before any is refined.
+// tight budget still reaches every pair before any is refined. Pairs with a static (or
+// kinematic) body go first and share the budget among themselves: a missed contact between
+// two moving bodies lets them overlap for a step, a missed one with the world loses a body
+// through the floor.
 void FrameScheduler::firstPass(const FrameSettings& settings) {
-  const std::size_t n = m_pairs.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    DeferredPair& pair = m_pairs[i];
-    const std::uint64_t waiting = n - i;
-    const std::uint64_t needed =
-        pair.algorithm->needed() > 0 ? pair.algorithm->needed() : kFirstGrant;
-    // The time cap is what is left of the step: the share is in the grant.
-    query(pair, std::min(needed, share(settings, waiting)), microsLeft(settings), settings);
+  const auto anchored = [](const DeferredPair& p) {
+    return p.object0->isStaticOrKinematicObject() || p.object1->isStaticOrKinematicObject();
+  };
+  std::uint64_t anchoredPairs = 0;
+  for (const DeferredPair& p : m_pairs) anchoredPairs += anchored(p) ? 1 : 0;
+  for (bool group : {true, false}) {
+    std::uint64_t waiting = group ? anchoredPairs : m_pairs.size() - anchoredPairs;
+    for (DeferredPair& pair : m_pairs) {
+      if (anchored(pair) != group) continue;
+      const std::uint64_t needed =
+          pair.algorithm->needed() > 0 ? pair.algorithm->needed() : kFirstGrant;
+      // The time cap is what is left of the step: the share is in the grant.
+      query(pair, std::min(needed, share(settings, waiting)), microsLeft(settings), settings);
+      --waiting;
+    }
   }
 }
 

@@ -275,11 +275,13 @@ class Traversal {
         if (!leaves && est.lower > m_settings.pMin) {
           ++m_result.collisionPairs;
           m_bestAccepted = std::max(m_bestAccepted, est.lower);
-          Witness w;
-          w.nodeA = ca[i];
-          w.nodeB = cb[j];
-          w.probability = static_cast<float>(est.lower);
-          addWitness(w);
+          if (m_settings.nodeWitnesses) {
+            Witness w;
+            w.nodeA = ca[i];
+            w.nodeB = cb[j];
+            w.probability = static_cast<float>(est.lower);
+            addWitness(w);
+          }
           if (m_result.collisionPairs >= static_cast<std::uint32_t>(m_settings.kMin)) {
             finish(true, m_exactHit ? 1.0 : m_bestAccepted, StopReason::QualityReached);
             return true;

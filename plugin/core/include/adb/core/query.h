@@ -55,6 +55,9 @@ struct QuerySettings {
   /// likely first) and a cut one leaves them in QueryScratch::openPairs(). Contact generation
   /// under a frame budget runs with it off.
   bool pruneImprobable = true;
+  /// ADB mode: keep accepted node pairs (p > pMin) as witnesses. Contact generation turns
+  /// them off so that the witness slots hold intersecting triangle pairs only.
+  bool nodeWitnesses = true;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
