@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "common/triangle_arrays.h"
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/mesh_mesh_algorithm.h"
 #include "adb/bullet/mesh_shape.h"
@@ -56,27 +57,6 @@ const Box kBin[] = {{Vec3(2.5, 0.25, 2.5), Vec3(0, -0.25, 0)},
                     {Vec3(2.5, 1.5, 0.25), Vec3(0, 1.25, 2.75)},
                     {Vec3(2.5, 1.5, 0.25), Vec3(0, 1.25, -2.75)}};
 
-// Bullet's GImpact and BVH shapes read the mesh through a striding interface that must outlive
-// them: this keeps the arrays.
-struct IndexedMesh {
-  std::vector<btScalar> vertices;
-  std::vector<int> indices;
-  std::unique_ptr<btTriangleIndexVertexArray> array;
-
-  explicit IndexedMesh(const TriangleMesh& mesh) {
-    for (const Vec3& v : mesh.vertices()) {
-      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<btScalar>(v[k]));
-    }
-    for (const Triangle& t : mesh.triangles()) {
-      for (std::uint32_t i : t) indices.push_back(static_cast<int>(i));
-    }
-    array = std::make_unique<btTriangleIndexVertexArray>(
-        static_cast<int>(mesh.triangleCount()), indices.data(), 3 * static_cast<int>(sizeof(int)),
-        static_cast<int>(mesh.vertices().size()), vertices.data(),
-        3 * static_cast<int>(sizeof(btScalar)));
-  }
-};
-
 }  // namespace
 
 struct PileScene::Impl {
@@ -86,7 +66,7 @@ struct PileScene::Impl {
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   std::unique_ptr<btDiscreteDynamicsWorld> world;
-  std::vector<std::unique_ptr<IndexedMesh>> indexed;
+  std::vector<std::unique_ptr<TriangleArrays>> indexed;  // what GImpact/BVH shapes read
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<Vec3> localInertia;  // per dynamic body, unit mass
@@ -113,7 +93,7 @@ struct PileScene::Impl {
       shapes.push_back(std::make_unique<MeshShape>(data));
       return shapes.back().get();
     }
-    indexed.push_back(std::make_unique<IndexedMesh>(data->mesh));
+    indexed.push_back(std::make_unique<TriangleArrays>(data->mesh));
     if (dynamic) {
       auto gimpact = std::make_unique<btGImpactMeshShape>(indexed.back()->array.get());
       gimpact->updateBound();

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "adb/bullet/precision.h"  // fails to compile at a Bullet precision other than adb's
+#include "common/triangle_arrays.h"
 
 namespace adb::tradeoff {
 namespace {
@@ -44,9 +45,7 @@ struct GimpactPeer::Impl {
   btCollisionDispatcher dispatcher{&configuration};
   btDispatcherInfo dispatchInfo;
   // GImpact reads the mesh through this interface: the arrays must outlive the shape.
-  std::vector<btScalar> vertices;
-  std::vector<int> indices;
-  std::unique_ptr<btTriangleIndexVertexArray> array;
+  std::unique_ptr<demo::TriangleArrays> arrays;  // what the shape reads: outlives it
   std::unique_ptr<btGImpactMeshShape> shape;
   btCollisionObject objectA, objectB;
   btCollisionAlgorithm* algorithm = nullptr;
@@ -65,19 +64,8 @@ struct GimpactPeer::Impl {
   void buildShape(const TriangleMesh& mesh) {
     releaseAlgorithm();
     shape.reset();
-    vertices.clear();
-    indices.clear();
-    for (const Vec3& v : mesh.vertices()) {
-      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<btScalar>(v[k]));
-    }
-    for (const Triangle& t : mesh.triangles()) {
-      for (std::uint32_t i : t) indices.push_back(static_cast<int>(i));
-    }
-    array = std::make_unique<btTriangleIndexVertexArray>(
-        static_cast<int>(mesh.triangleCount()), indices.data(), 3 * static_cast<int>(sizeof(int)),
-        static_cast<int>(mesh.vertices().size()), vertices.data(),
-        3 * static_cast<int>(sizeof(btScalar)));
-    shape = std::make_unique<btGImpactMeshShape>(array.get());
+    arrays = std::make_unique<demo::TriangleArrays>(mesh);
+    shape = std::make_unique<btGImpactMeshShape>(arrays->array.get());
     shape->setMargin(0);
     shape->updateBound();  // builds the box tree once
     objectA.setCollisionShape(shape.get());
