@@ -269,8 +269,15 @@ TEST(FrameBudget, TimeBudgetHoldsWithinASmallOvershoot) {
   }
   ASSERT_GT(used.size(), 30u);
   std::sort(used.begin(), used.end());
-  EXPECT_LT(used[used.size() / 2], 300 + 200.0) << "median step";
-  EXPECT_LT(used[used.size() * 9 / 10], 300 + 1000.0) << "90th percentile step";
+#ifdef __SANITIZE_ADDRESS__
+  // Under the sanitizers every unit of uninterrupted work is several times slower, and so
+  // is the overshoot it causes (measured: median 517 us).
+  constexpr double kSlack = 3.0;
+#else
+  constexpr double kSlack = 1.0;
+#endif
+  EXPECT_LT(used[used.size() / 2], 300 + 200.0 * kSlack) << "median step";
+  EXPECT_LT(used[used.size() * 9 / 10], 300 + 1000.0 * kSlack) << "90th percentile step";
 }
 
 TEST(FrameBudget, BadSettingsAreRefusedByName) {
