@@ -107,15 +107,12 @@ void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micro
   m_stats.nodePairs += r.nodePairs;
   switch (r.stop) {
     case StopReason::Completed:
-      pair.decided = true;
       pair.confidence = 1.0;
       break;
     case StopReason::QualityReached:
-      pair.decided = true;
       pair.confidence = r.confidence;
       break;
     default:
-      pair.decided = false;
       pair.confidence = 1.0 - doubtOf(pair.algorithm->openPairs());
       break;
   }
@@ -150,7 +147,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
 void FrameScheduler::refine(const FrameSettings& settings) {
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
-    if (!m_pairs[i].decided) m_order.push_back(i);
+    if (!m_pairs[i].decided()) m_order.push_back(i);
   }
   const auto moreCertain = [this](std::uint32_t x, std::uint32_t y) {
     const double cx = m_pairs[x].confidence, cy = m_pairs[y].confidence;
@@ -168,7 +165,7 @@ void FrameScheduler::refine(const FrameSettings& settings) {
     // A re-run that cannot go further than the last one would only repeat it.
     if (grant <= pair.grant || !(micros > 0.0)) continue;
     query(pair, grant, micros, settings);
-    if (!pair.decided) {
+    if (!pair.decided()) {
       m_order.push_back(static_cast<std::uint32_t>(&pair - m_pairs.data()));
       std::push_heap(m_order.begin(), m_order.end(), moreCertain);
     }

@@ -29,8 +29,12 @@ struct DeferredPair {
   // Scheduling state of this step.
   std::uint64_t grant = 0;     // node pairs granted to the last query
   double confidence = 0.0;     // see FrameStats::meanConfidence
-  bool decided = false;        // completed or stopped on quality
   StopReason stop = StopReason::Completed;
+
+  /// Completed or stopped on quality: nothing left to refine.
+  bool decided() const {
+    return stop == StopReason::Completed || stop == StopReason::QualityReached;
+  }
 };
 
 class FrameScheduler {
