@@ -20,11 +20,17 @@
 // pruned so far: it bounds the chance that any unresolved pair collides. Each frontier is a
 // cover of all unresolved pairs, so the smallest U seen so far stays valid: both confidences
 // only grow with budget.
+//
+// Exact mode is a depth-first descent over overlapping boxes. Cut by a budget, its stack is
+// estimated by the same model (openPairs(), and the confidence 1 - min(1, U)) and can be
+// resumed later. Contact generation samples hits per contact region (hitsPerRegion): once a
+// region holds its quota, its remaining pairs are skipped at no cost, in either mode.
 #include "adb/core/query.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "adb/core/triangle_test.h"
@@ -36,12 +42,23 @@ struct QueryScratchAccess {
   using Entry = OpenPair;
   static std::vector<Entry>& heap(QueryScratch& s) { return s.m_heap; }
   static std::vector<Witness>& witnesses(QueryScratch& s) { return s.m_witnesses; }
+  static std::vector<std::uint32_t>& regionHits(QueryScratch& s) { return s.m_regionHits; }
+  // Whether `s` holds an exact query of trees a and b that a budget stopped.
+  static bool resumable(const QueryScratch& s, const AdbTree& a, const AdbTree& b) {
+    return s.m_resumeA == &a && s.m_resumeB == &b;
+  }
+  static bool& resumeHit(QueryScratch& s) { return s.m_resumeHit; }
+  static void markResumable(QueryScratch& s, const AdbTree* a, const AdbTree* b) {
+    s.m_resumeA = a;
+    s.m_resumeB = b;
+  }
 };
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using Entry = QueryScratchAccess::Entry;
+constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
 
 // The clock is read once this much work has been done since the last read, counting 4 per
 // popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: a short query is not
@@ -50,6 +67,11 @@ using Entry = QueryScratchAccess::Entry;
 constexpr unsigned kClockInterval = 64;
 
 bool heapLess(const Entry& x, const Entry& y) { return x.p < y.p; }
+
+// Whether boxes [loX, hiX] and [loY, hiY] are separated along some axis by more than `gap`.
+bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& hiY, double gap) {
+  return (loX.array() > hiY.array() + gap).any() || (loY.array() > hiX.array() + gap).any();
+}
 
 class Traversal {
  public:
@@ -61,15 +83,27 @@ class Traversal {
         m_settings(settings),
         m_heap(QueryScratchAccess::heap(scratch)),
         m_witnesses(QueryScratchAccess::witnesses(scratch)),
+        m_regionHits(QueryScratchAccess::regionHits(scratch)),
+        m_scratch(scratch),
         m_start(Clock::now()),
-        m_timed(std::isfinite(settings.budgetMicros)) {
-    m_heap.clear();
-    m_witnesses.clear();
+        m_timed(std::isfinite(settings.budgetMicros)),
+        m_resuming(settings.resume && settings.mode == QueryMode::Exact &&
+                   QueryScratchAccess::resumable(scratch, a, b)) {
+    if (!m_resuming) {
+      m_heap.clear();
+      m_witnesses.clear();
+      m_regionHits.clear();
+      QueryScratchAccess::resumeHit(scratch) = false;
+    }
+    QueryScratchAccess::markResumable(scratch, nullptr, nullptr);
   }
 
   QueryResult run() {
     if (m_settings.mode == QueryMode::Exact) {
       runExact();
+      if (m_result.stop == StopReason::TimeBudget || m_result.stop == StopReason::WorkBudget) {
+        QueryScratchAccess::markResumable(m_scratch, m_a.tree, m_b.tree);
+      }
     } else {
       runAdb();
     }
@@ -111,25 +145,61 @@ class Traversal {
     }
   }
 
-  // Tests every triangle pair of two leaves; records hits. Returns true on a hit.
-  bool testLeaves(std::uint32_t ia, std::uint32_t ib) {
+  // --- contact regions (QuerySettings::hitsPerRegion) -------------------------------------
+  // The region of a child pair at depths (da, db): its parent's, or a new one where the pair
+  // is the first on its path to reach regionDepth.
+  std::uint32_t childRegion(std::uint32_t parent, int da, int db) {
+    if (parent != kNoRegion) return parent;
+    if (m_settings.hitsPerRegion == 0 || da + db < m_settings.regionDepth) return kNoRegion;
+    m_regionHits.push_back(0);
+    return static_cast<std::uint32_t>(m_regionHits.size() - 1);
+  }
+
+  // A region with its hits found: the rest of it is skipped.
+  bool regionFull(std::uint32_t region) const {
+    return region != kNoRegion && m_regionHits[region] >= m_settings.hitsPerRegion;
+  }
+
+  // Tests the triangle pairs of two leaves (all, or until their region is full); records
+  // hits. Returns true on a hit.
+  bool testLeaves(std::uint32_t ia, std::uint32_t ib, std::uint32_t region) {
     const Node& na = m_a.tree->nodes()[ia];
     const Node& nb = m_b.tree->nodes()[ib];
     const auto& va = m_a.tree->localVertices();
     const auto& vb = m_b.tree->localVertices();
     const auto& ta = m_a.tree->triangles();
     const auto& tb = m_b.tree->triangles();
-    // B's triangles mapped into A's frame once per leaf pair (at most 15 x 3 points).
+    // B's triangles mapped into A's frame once per leaf pair (at most 15 x 3 points), and
+    // the boxes of both leaves' triangles in that frame (Eigen leaves them uninitialised:
+    // nothing is written for the slots a leaf does not use).
     Vec3 mapped[15][3];
+    Vec3 loA[15], hiA[15], loB[15], hiB[15];
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
       for (int k = 0; k < 3; ++k) {
         mapped[j][k] = m_frame.bToA(vb[tb[nb.firstTriangle() + j][k]]);
       }
+      loB[j] = mapped[j][0].cwiseMin(mapped[j][1]).cwiseMin(mapped[j][2]);
+      hiB[j] = mapped[j][0].cwiseMax(mapped[j][1]).cwiseMax(mapped[j][2]);
+      lo = lo.cwiseMin(loB[j]);
+      hi = hi.cwiseMax(hiB[j]);
     }
+    for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
+      const Triangle& t = ta[na.firstTriangle() + i];
+      loA[i] = va[t[0]].cwiseMin(va[t[1]]).cwiseMin(va[t[2]]);
+      hiA[i] = va[t[0]].cwiseMax(va[t[1]]).cwiseMax(va[t[2]]);
+      lo = lo.cwiseMin(loA[i]);
+      hi = hi.cwiseMax(hiA[i]);
+    }
+    // Triangle pairs whose boxes are apart by more than this are skipped untested: it is a
+    // thousand times trianglesIntersect's tolerance (1e-12 of the pair's extent), so the
+    // answer is the one the test would give. Most pairs of two overlapping leaves are apart.
+    const double gap = 1e-9 * (hi - lo).maxCoeff();
     bool hit = false;
     for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
       const Triangle& t = ta[na.firstTriangle() + i];
       for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
+        if (boxesApart(loA[i], hiA[i], loB[j], hiB[j], gap)) continue;
         ++m_result.triangleTests;
         ++m_workSinceClock;
         if (!trianglesIntersect(va[t[0]], va[t[1]], va[t[2]], mapped[j][0], mapped[j][1],
@@ -145,6 +215,9 @@ class Traversal {
         w.probability = 1.0f;
         addWitness(w);
         if (m_settings.stopAtFirstHit) return true;
+        if (region != kNoRegion && ++m_regionHits[region] >= m_settings.hitsPerRegion) {
+          return true;
+        }
       }
     }
     return hit;
@@ -163,19 +236,25 @@ class Traversal {
 
   // --- exact mode: depth-first over overlapping boxes ----------------------------------
   void runExact() {
-    ++m_result.nodePairs;
-    if (!detail::nodesOverlap(m_a, 0, m_b, 0, m_frame)) {
-      finish(false, 1.0, StopReason::Completed);
-      return;
+    if (!m_resuming) {
+      ++m_result.nodePairs;
+      if (!detail::nodesOverlap(m_a, 0, m_b, 0, m_frame)) {
+        finish(false, 1.0, StopReason::Completed);
+        return;
+      }
+      m_heap.push_back(Entry{1.0f, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
     }
-    m_heap.push_back(Entry{1.0f, 1.0f, 0, 0, 0, 0});
-    bool hit = false;
+    bool& hit = QueryScratchAccess::resumeHit(m_scratch);
     while (!m_heap.empty()) {
+      if (regionFull(m_heap.back().region)) {  // skipping costs no budget
+        m_heap.pop_back();
+        continue;
+      }
       if (!budgetLeft()) {
-        // Nothing is known about the pairs left unexplored: no model in exact mode. Its
-        // stack is not a set of estimated pairs, so openPairs() reports none.
-        m_heap.clear();
-        finish(hit, hit ? 1.0 : 0.0, m_result.stop);
+        // The stack is what is left unexplored: estimated by the model, it gives the cut
+        // query its confidence and the caller its plausible contacts (openPairs()).
+        const double doubt = estimateFrontier();
+        finish(hit, hit ? 1.0 : 1.0 - std::min(1.0, doubt), m_result.stop);
         return;
       }
       const Entry e = m_heap.back();
@@ -183,7 +262,7 @@ class Traversal {
       const Node& na = m_a.tree->nodes()[e.a];
       const Node& nb = m_b.tree->nodes()[e.b];
       if (na.isLeaf() && nb.isLeaf()) {
-        if (testLeaves(e.a, e.b)) {
+        if (testLeaves(e.a, e.b, e.region)) {
           hit = true;
           if (m_settings.stopAtFirstHit) {
             finish(true, 1.0, StopReason::ExactHit);
@@ -194,11 +273,15 @@ class Traversal {
       }
       std::uint32_t ca[2], cb[2];
       const int na2 = children(na, e.a, ca), nb2 = children(nb, e.b, cb);
+      const int da = na.isLeaf() ? e.depthA : e.depthA + 1;
+      const int db = nb.isLeaf() ? e.depthB : e.depthB + 1;
       for (int i = 0; i < na2; ++i) {
         for (int j = 0; j < nb2; ++j) {
           ++m_result.nodePairs;
           if (detail::nodesOverlap(m_a, ca[i], m_b, cb[j], m_frame)) {
-            m_heap.push_back(Entry{1.0f, 1.0f, ca[i], cb[j], 0, 0});
+            m_heap.push_back(Entry{1.0f, 1.0f, ca[i], cb[j], childRegion(e.region, da, db),
+                                   static_cast<std::uint16_t>(da),
+                                   static_cast<std::uint16_t>(db)});
           }
         }
       }
@@ -207,8 +290,9 @@ class Traversal {
   }
 
   // --- ADB mode: the paper's priority traversal ----------------------------------------
-  void push(const detail::PairEstimate& est, std::uint32_t a, std::uint32_t b, int da, int db) {
-    const Entry e{static_cast<float>(est.lower), static_cast<float>(est.upper), a, b,
+  void push(const detail::PairEstimate& est, std::uint32_t a, std::uint32_t b,
+            std::uint32_t region, int da, int db) {
+    const Entry e{static_cast<float>(est.lower), static_cast<float>(est.upper), a, b, region,
                   static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)};
     m_heap.push_back(e);
     std::push_heap(m_heap.begin(), m_heap.end(), heapLess);
@@ -223,7 +307,8 @@ class Traversal {
       return;
     }
     // The paper inserts the roots with probability 1: LB is 0 at depth 0, so Eq. 3 is 0.
-    m_heap.push_back(Entry{1.0f, static_cast<float>(root.upper), 0, 0, 0, 0});
+    m_heap.push_back(
+        Entry{1.0f, static_cast<float>(root.upper), 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
     m_upperSum = static_cast<float>(root.upper);
     m_minUpperSum = m_upperSum;
     while (!m_heap.empty()) {
@@ -235,7 +320,7 @@ class Traversal {
       const Entry e = m_heap.back();
       m_heap.pop_back();
       m_upperSum -= e.upper;
-      if (expandAdb(e)) return;
+      if (!regionFull(e.region) && expandAdb(e)) return;
       // Rounding must not make an empty queue look doubtful, nor a sum negative.
       m_upperSum = m_heap.empty() ? 0.0 : std::max(0.0, m_upperSum);
       m_minUpperSum = std::min(m_minUpperSum, m_upperSum + m_prunedMass);
@@ -248,7 +333,7 @@ class Traversal {
     const Node& na = m_a.tree->nodes()[e.a];
     const Node& nb = m_b.tree->nodes()[e.b];
     if (na.isLeaf() && nb.isLeaf()) {
-      if (testLeaves(e.a, e.b)) {
+      if (testLeaves(e.a, e.b, e.region)) {
         m_exactHit = true;
         if (m_settings.stopAtFirstHit) {
           finish(true, 1.0, StopReason::ExactHit);
@@ -287,7 +372,7 @@ class Traversal {
             return true;
           }
         }
-        push(est, ca[i], cb[j], da, db);
+        push(est, ca[i], cb[j], childRegion(e.region, da, db), da, db);
       }
     }
     return false;
@@ -299,6 +384,8 @@ class Traversal {
   // Accepted pairs below k_min are evidence the paper does not act on: they are not
   // witnesses of a "no".
   void finishUncertain(StopReason why) {
+    dropFullRegions();
+    std::make_heap(m_heap.begin(), m_heap.end(), heapLess);
     if (m_exactHit) {
       finish(true, 1.0, why);
       return;
@@ -306,6 +393,30 @@ class Traversal {
     m_witnesses.clear();
     m_result.witnessesDropped = 0;
     finish(false, 1.0 - std::min(1.0, m_minUpperSum), why);
+  }
+
+  // Pairs of regions whose hits were found are resolved, not open: a cut query leaves only
+  // the others in openPairs(). The order of the rest is kept (exact mode resumes from it).
+  void dropFullRegions() {
+    if (m_regionHits.empty()) return;
+    const auto full = [this](const Entry& e) { return regionFull(e.region); };
+    m_heap.erase(std::remove_if(m_heap.begin(), m_heap.end(), full), m_heap.end());
+  }
+
+  // Exact mode cut by a budget: the model's estimates for the pairs left on the stack (at
+  // most 3 per level of depth, not counted as node pairs). Returns their doubt: the sum of
+  // Pr[X >= 1].
+  double estimateFrontier() {
+    dropFullRegions();
+    double doubt = 0.0;
+    for (Entry& e : m_heap) {
+      const detail::PairEstimate est =
+          detail::estimatePair(m_a, e.a, e.depthA, m_b, e.b, e.depthB, m_frame);
+      e.p = static_cast<float>(est.lower);
+      e.upper = static_cast<float>(est.upper);
+      doubt += e.upper;
+    }
+    return doubt;
   }
 
   void finish(bool collides, double confidence, StopReason why) {
@@ -319,8 +430,11 @@ class Traversal {
   const QuerySettings& m_settings;
   std::vector<Entry>& m_heap;
   std::vector<Witness>& m_witnesses;
+  std::vector<std::uint32_t>& m_regionHits;
+  QueryScratch& m_scratch;
   Clock::time_point m_start;
   bool m_timed;
+  bool m_resuming;
   unsigned m_workSinceClock = 0;
   bool m_firstCheck = true;  // the first check reads the clock: a zero budget stops at once
   QueryResult m_result;
@@ -345,7 +459,8 @@ const char* toString(StopReason r) {
 }
 
 std::size_t QueryScratch::capacityBytes() const {
-  return m_heap.capacity() * sizeof(Entry) + m_witnesses.capacity() * sizeof(Witness);
+  return m_heap.capacity() * sizeof(Entry) + m_witnesses.capacity() * sizeof(Witness) +
+         m_regionHits.capacity() * sizeof(std::uint32_t);
 }
 
 void validate(const QuerySettings& s) {
@@ -356,6 +471,10 @@ void validate(const QuerySettings& s) {
   if (s.kMin < 1) {
     throw SettingsError("QuerySettings::kMin is " + std::to_string(s.kMin) +
                         "; it must be at least 1");
+  }
+  if (s.regionDepth < 0) {
+    throw SettingsError("QuerySettings::regionDepth is " + std::to_string(s.regionDepth) +
+                        "; it must be >= 0");
   }
   if (std::isnan(s.budgetMicros) || s.budgetMicros < 0.0) {
     throw SettingsError("QuerySettings::budgetMicros is " + std::to_string(s.budgetMicros) +

@@ -58,6 +58,21 @@ struct QuerySettings {
   /// ADB mode: keep accepted node pairs (p > pMin) as witnesses. Contact generation turns
   /// them off so that the witness slots hold intersecting triangle pairs only.
   bool nodeWitnesses = true;
+  /// Contact sampling (with stopAtFirstHit off): once a contact region holds this many
+  /// intersecting triangle pairs, the rest of the region is skipped; 0 tests every pair. A
+  /// region is a node pair whose depths in A and B add up to at least regionDepth, with
+  /// everything below it. Deeply interpenetrating meshes intersect in thousands of triangle
+  /// pairs, of which a contact manifold keeps 4: a few per region keep the contacts spread
+  /// over the whole overlap at a fraction of the cost. `collides` stays exact: a skipped
+  /// region already holds a hit.
+  std::uint32_t hitsPerRegion = 0;
+  int regionDepth = 8;
+  /// Exact mode: continue the last query of this scratch where a budget stopped it, with
+  /// this call's budgets as the additional allowance, instead of starting again. The trees
+  /// must be the same ones (otherwise the query starts afresh) and the poses and the other
+  /// settings the caller's business: the same as before. Witnesses accumulate; the result's
+  /// counters are this call's work.
+  bool resume = false;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
@@ -92,7 +107,9 @@ struct OpenPair {
   float p;                 ///< Eq. 3 lower bound: the traversal's priority
   float upper;             ///< Pr[X >= 1]: the pair's share of the "no collision" doubt
   std::uint32_t a, b;      ///< node indices in tree A and tree B
+  std::uint32_t region;    ///< contact region (QuerySettings::hitsPerRegion) or kNoRegion
   std::uint16_t depthA, depthB;
+  static constexpr std::uint32_t kNoRegion = 0xFFFFFFFFu;
 };
 
 /// Reusable working memory of queries: one per thread.
@@ -100,8 +117,10 @@ class QueryScratch {
  public:
   /// The witnesses of the last query that used this scratch.
   const std::vector<Witness>& witnesses() const { return m_witnesses; }
-  /// ADB mode: the pairs the last query left queued (heap order, not sorted), empty when it
-  /// completed. Where a budget cut a query, these are the plausible contacts.
+  /// The node pairs the last query left unresolved, with the model's estimates, empty when
+  /// it completed. ADB mode: its queue (heap order, not sorted). Exact mode: the depth-first
+  /// stack a budget cut, estimated when it stopped. Pairs of a contact region whose hits
+  /// were found are not in it. Where a budget cut a query, these are the plausible contacts.
   const std::vector<OpenPair>& openPairs() const { return m_heap; }
   /// Bytes currently reserved (grows to the largest query seen, never shrinks).
   std::size_t capacityBytes() const;
@@ -110,6 +129,11 @@ class QueryScratch {
   friend struct QueryScratchAccess;
   std::vector<OpenPair> m_heap;
   std::vector<Witness> m_witnesses;
+  std::vector<std::uint32_t> m_regionHits;  // hits found per contact region
+  // What QuerySettings::resume continues: set when an exact query stopped on a budget.
+  const AdbTree* m_resumeA = nullptr;
+  const AdbTree* m_resumeB = nullptr;
+  bool m_resumeHit = false;  // that query had found an intersecting triangle pair
 };
 
 /// Thrown for a pose with a non-finite entry or a rotation that is not orthonormal.
@@ -120,8 +144,9 @@ class PoseError : public std::invalid_argument {
 
 /// Tests tree `a` at `poseA` against tree `b` at `poseB` (poses map each mesh's own
 /// coordinates to the world). Throws SettingsError for invalid settings (pMin outside [0, 1],
-/// kMin < 1, NaN or negative budget) and PoseError for a bad pose (non-finite, or a rotation
-/// off orthonormal by more than 1e-6); never throws for a valid call.
+/// kMin < 1, NaN or negative budget, negative regionDepth) and PoseError for a bad pose
+/// (non-finite, or a rotation off orthonormal by more than 1e-6); never throws for a valid
+/// call.
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch);
 
