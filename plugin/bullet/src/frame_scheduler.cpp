@@ -21,6 +21,15 @@ constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 // count most, one odd step does not swing the next step's shares.
 constexpr double kSmoothing = 0.2;
 
+// A quality target needs the paper's best-first traversal; contacts alone are found faster
+// depth first (docs/bullet-budget.md).
+bool bestFirst(const FrameSettings& s) { return s.kMin > 0; }
+
+// A pair with a static or kinematic body: the world holds the other body up.
+bool anchored(const DeferredPair& p) {
+  return p.object0->isStaticOrKinematicObject() || p.object1->isStaticOrKinematicObject();
+}
+
 bool unbudgeted(const FrameSettings& s) {
   return s.budgetNodePairs == kUnlimited && std::isinf(s.budgetMicros);
 }
@@ -79,29 +88,30 @@ std::uint64_t FrameScheduler::share(const FrameSettings& s, std::uint64_t waitin
   return left;
 }
 
-void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micros,
-                           const FrameSettings& settings) {
+std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micros,
+                                    const FrameSettings& settings, bool resume) {
   QuerySettings q;
-  if (unbudgeted(settings)) {
-    // Nothing to share: exact mode is the cheapest complete traversal (a box-and-slab test
-    // per node pair instead of a probability).
-    q.mode = QueryMode::Exact;
-  } else {
+  if (bestFirst(settings)) {
     q.mode = QueryMode::Adb;
     q.pMin = settings.pMin;
-    q.kMin = settings.kMin > 0 ? settings.kMin : std::numeric_limits<int>::max();
+    q.kMin = settings.kMin;
     q.pruneImprobable = false;  // complete means exact; cut leaves every open pair
     q.nodeWitnesses = false;    // the 64 witness slots are for triangle pairs
+  } else {
+    q.mode = QueryMode::Exact;
+    q.resume = resume;
+  }
+  if (!unbudgeted(settings)) {
     q.budgetNodePairs = grant;
     q.budgetMicros = micros;
   }
-  q.stopAtFirstHit = false;
   const QueryResult r = pair.algorithm->query(pair, q);
   if (r.nodePairs >= kFirstGrant && r.seconds > 0.0) {  // long enough to measure
     const double perPair = r.seconds * 1e6 / static_cast<double>(r.nodePairs);
     m_microsPerNodePair += kSmoothing * (perPair - m_microsPerNodePair);
   }
-  pair.grant = grant;
+  // Total granted this step: a resumed query adds to what it had.
+  pair.grant = resume && grant <= kUnlimited - pair.grant ? pair.grant + grant : grant;
   pair.stop = r.stop;
   ++m_stats.queries;
   m_stats.nodePairs += r.nodePairs;
@@ -116,6 +126,7 @@ void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micro
       pair.confidence = 1.0 - doubtOf(pair.algorithm->openPairs());
       break;
   }
+  return r.nodePairs;
 }
 
 // Every pair gets what it needed last step, at most an even share of what is left, so a
@@ -124,19 +135,19 @@ void FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micro
 // two moving bodies lets them overlap for a step, a missed one with the world loses a body
 // through the floor.
 void FrameScheduler::firstPass(const FrameSettings& settings) {
-  const auto anchored = [](const DeferredPair& p) {
-    return p.object0->isStaticOrKinematicObject() || p.object1->isStaticOrKinematicObject();
-  };
   std::uint64_t anchoredPairs = 0;
   for (const DeferredPair& p : m_pairs) anchoredPairs += anchored(p) ? 1 : 0;
   for (bool group : {true, false}) {
     std::uint64_t waiting = group ? anchoredPairs : m_pairs.size() - anchoredPairs;
     for (DeferredPair& pair : m_pairs) {
       if (anchored(pair) != group) continue;
-      const std::uint64_t needed =
-          pair.algorithm->needed() > 0 ? pair.algorithm->needed() : kFirstGrant;
+      // What it needed last step and a quarter more (a pair's need grows while bodies
+      // settle into each other), at least a few levels of both trees.
+      const std::uint64_t last = pair.algorithm->needed();
+      const std::uint64_t wanted = std::max(last + last / 4, kFirstGrant);
       // The time cap is what is left of the step: the share is in the grant.
-      query(pair, std::min(needed, share(settings, waiting)), microsLeft(settings), settings);
+      query(pair, std::min(wanted, share(settings, waiting)), microsLeft(settings), settings,
+            false);
       --waiting;
     }
   }
@@ -149,9 +160,13 @@ void FrameScheduler::refine(const FrameSettings& settings) {
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (!m_pairs[i].decided()) m_order.push_back(i);
   }
+  // Least certain first; among equally certain pairs those with a static body (the ones
+  // that lose bodies through the floor), then the earlier.
   const auto moreCertain = [this](std::uint32_t x, std::uint32_t y) {
     const double cx = m_pairs[x].confidence, cy = m_pairs[y].confidence;
-    return cx != cy ? cx > cy : x > y;
+    if (cx != cy) return cx > cy;
+    const bool ax = anchored(m_pairs[x]), ay = anchored(m_pairs[y]);
+    return ax != ay ? ay : x > y;
   };
   std::make_heap(m_order.begin(), m_order.end(), moreCertain);
   while (!m_order.empty()) {
@@ -160,11 +175,21 @@ void FrameScheduler::refine(const FrameSettings& settings) {
     m_order.pop_back();
     const std::uint64_t left = share(settings, 1);
     const double micros = microsLeft(settings);
-    const std::uint64_t wanted = std::max(2 * pair.grant, pair.grant + kMinGrowth);
-    const std::uint64_t grant = std::min(wanted, left);
-    // A re-run that cannot go further than the last one would only repeat it.
-    if (grant <= pair.grant || !(micros > 0.0)) continue;
-    query(pair, grant, micros, settings);
+    // As much again as it had (doubling its total), at least kMinGrowth more.
+    const std::uint64_t more = std::max(pair.grant, kMinGrowth);
+    if (!bestFirst(settings)) {
+      // The depth-first traversal resumes where it stopped: nothing is redone.
+      const std::uint64_t grant = std::min(more, left);
+      if (grant == 0 || !(micros > 0.0)) continue;
+      // A query that could not take a single step (a grant below one expansion, or the clock
+      // already out) would be re-queued forever.
+      if (query(pair, grant, micros, settings, true) == 0) continue;
+    } else {
+      // The best-first one starts again with the larger grant.
+      const std::uint64_t grant = std::min(pair.grant + more, left);
+      if (grant <= pair.grant || !(micros > 0.0)) continue;
+      if (query(pair, grant, micros, settings, false) == 0) continue;
+    }
     if (!pair.decided()) {
       m_order.push_back(static_cast<std::uint32_t>(&pair - m_pairs.data()));
       std::push_heap(m_order.begin(), m_order.end(), moreCertain);

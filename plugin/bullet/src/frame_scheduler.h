@@ -27,7 +27,7 @@ struct DeferredPair {
   btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
   int partId0, index0, partId1, index1;
   // Scheduling state of this step.
-  std::uint64_t grant = 0;     // node pairs granted to the last query
+  std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
   double confidence = 0.0;     // see FrameStats::meanConfidence
   StopReason stop = StopReason::Completed;
 
@@ -52,8 +52,9 @@ class FrameScheduler {
 
   void firstPass(const FrameSettings& settings);
   void refine(const FrameSettings& settings);
-  void query(DeferredPair& pair, std::uint64_t grant, double micros,
-             const FrameSettings& settings);
+  /// Runs one query of `pair`; returns the node pairs it evaluated.
+  std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
+                      const FrameSettings& settings, bool resume);
   void writeContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
   double microsLeft(const FrameSettings& settings) const;

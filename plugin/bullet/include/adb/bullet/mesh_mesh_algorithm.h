@@ -57,9 +57,10 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
                            const FrameSettings& settings);
 
   QueryScratch m_scratch;  // grows to this pair's largest query, then stays
-  QueryResult m_last;      // the last query's result
+  StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
   detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
   std::uint64_t m_needed = 0;
+  std::uint64_t m_used = 0;  // node pairs of this step's queries so far
 };
 
 /// Bytes a dispatcher's algorithm pool must hold per element for adb's algorithms: pass it
