@@ -20,6 +20,12 @@ constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 // Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
 // count most, one odd step does not swing the next step's shares.
 constexpr double kSmoothing = 0.2;
+// The overshoot margin (updateMargin): its decay per step within budget, and its floor and
+// cap as fractions of the budget. The floor covers what even a perfect estimate overruns by:
+// the last query's clock interval and leaf pair, tens of microseconds.
+constexpr double kMarginDecay = 0.98;
+constexpr double kMinMargin = 0.01;
+constexpr double kMaxMargin = 0.25;
 
 // A quality target needs the paper's best-first traversal; contacts alone are found faster
 // depth first (docs/bullet-budget.md).
@@ -54,10 +60,13 @@ void FrameScheduler::run(const FrameSettings& settings) {
   m_start = Clock::now();
   m_stats = FrameStats{};
   m_stats.pairs = static_cast<std::uint32_t>(m_pairs.size());
+  m_unqueried = m_pairs.size();
+  m_undecided = 0;
   firstPass(settings);
   refine(settings);
   writeContacts(settings);
   m_stats.micros = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
+  updateMargin(settings);
 }
 
 std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
@@ -68,9 +77,24 @@ std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
 double FrameScheduler::microsLeft(const FrameSettings& s) const {
   if (std::isinf(s.budgetMicros)) return s.budgetMicros;
   const double used = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
-  // The contact writing that follows is part of the step: its expected cost is held back.
-  const double contacts = m_contactMicrosPerPair * static_cast<double>(m_pairs.size());
-  return std::max(0.0, s.budgetMicros - contacts - used);
+  // The contact writing still to come is part of the step: its expected cost is held back.
+  // A pair not queried yet will most likely be decided and written at once; one the budget
+  // cut is written at the end, and costs more (more witnesses, its plausible contacts).
+  const double contacts = m_writeMicros * static_cast<double>(m_unqueried) +
+                          m_lateWriteMicros * static_cast<double>(m_undecided);
+  const double margin = std::max(m_margin, kMinMargin * s.budgetMicros);
+  return std::max(0.0, s.budgetMicros - margin - contacts - used);
+}
+
+// The margin held back from a time budget: a step's whole overshoot is added to it, and it
+// decays by kMarginDecay per step that stays within. The overshoot (the last query's clock
+// interval, contact writing slower than its average) varies from step to step: a margin
+// that followed its mean would leave half the steps over budget; this one follows its peaks.
+void FrameScheduler::updateMargin(const FrameSettings& s) {
+  if (std::isinf(s.budgetMicros)) return;
+  const double over = m_stats.micros - s.budgetMicros;
+  m_margin = over > 0.0 ? m_margin + over : m_margin * kMarginDecay;
+  m_margin = std::clamp(m_margin, kMinMargin * s.budgetMicros, kMaxMargin * s.budgetMicros);
 }
 
 // A pair's even share of what is left, in node pairs. A time budget is shared as node pairs
@@ -148,6 +172,14 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
       // The time cap is what is left of the step: the share is in the grant.
       query(pair, std::min(wanted, share(settings, waiting)), microsLeft(settings), settings,
             false);
+      --m_unqueried;
+      // A decided pair's contacts are final: written now, their time is measured rather
+      // than estimated by the time the budget runs out.
+      if (pair.decided()) {
+        writePair(pair, settings);
+      } else {
+        ++m_undecided;
+      }
       --waiting;
     }
   }
@@ -190,20 +222,38 @@ void FrameScheduler::refine(const FrameSettings& settings) {
       if (grant <= pair.grant || !(micros > 0.0)) continue;
       if (query(pair, grant, micros, settings, false) == 0) continue;
     }
-    if (!pair.decided()) {
+    if (pair.decided()) {
+      --m_undecided;
+      writePair(pair, settings);
+    } else {
       m_order.push_back(static_cast<std::uint32_t>(&pair - m_pairs.data()));
       std::push_heap(m_order.begin(), m_order.end(), moreCertain);
     }
   }
 }
 
-void FrameScheduler::writeContacts(const FrameSettings& settings) {
+// Writes a pair's contacts and measures the time it took.
+double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settings) {
   const Clock::time_point start = Clock::now();
+  const ContactCount c = pair.algorithm->writeContacts(pair, settings);
+  m_stats.exactContacts += c.exact;
+  m_stats.plausibleContacts += c.plausible;
+  pair.written = true;
+  const double micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  m_stats.contactMicros += micros;
+  return micros;
+}
+
+// The pairs still unwritten (those the budget cut), then the step's statistics.
+void FrameScheduler::writeContacts(const FrameSettings& settings) {
+  const double early = m_stats.contactMicros;
+  std::uint32_t late = 0;
   double confidenceSum = 0.0;
   for (DeferredPair& pair : m_pairs) {
-    const ContactCount c = pair.algorithm->writeContacts(pair, settings);
-    m_stats.exactContacts += c.exact;
-    m_stats.plausibleContacts += c.plausible;
+    if (!pair.written) {
+      writePair(pair, settings);
+      ++late;
+    }
     confidenceSum += pair.confidence;
     m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
     if (pair.stop == StopReason::Completed) {
@@ -216,11 +266,14 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
   }
   if (!m_pairs.empty()) confidenceSum /= static_cast<double>(m_pairs.size());
   m_stats.meanConfidence = m_pairs.empty() ? 1.0 : confidenceSum;
-  m_stats.contactMicros =
-      std::chrono::duration<double, std::micro>(Clock::now() - start).count();
-  if (!m_pairs.empty()) {
-    const double perPair = m_stats.contactMicros / static_cast<double>(m_pairs.size());
-    m_contactMicrosPerPair += kSmoothing * (perPair - m_contactMicrosPerPair);
+  const std::uint32_t earlyPairs = static_cast<std::uint32_t>(m_pairs.size()) - late;
+  if (earlyPairs > 0) {
+    const double perPair = early / static_cast<double>(earlyPairs);
+    m_writeMicros += kSmoothing * (perPair - m_writeMicros);
+  }
+  if (late > 0) {
+    const double perPair = (m_stats.contactMicros - early) / static_cast<double>(late);
+    m_lateWriteMicros += kSmoothing * (perPair - m_lateWriteMicros);
   }
 }
 

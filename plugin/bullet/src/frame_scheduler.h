@@ -30,6 +30,7 @@ struct DeferredPair {
   std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
   double confidence = 0.0;     // see FrameStats::meanConfidence
   StopReason stop = StopReason::Completed;
+  bool written = false;        // its contacts are in its manifold
 
   /// Completed or stopped on quality: nothing left to refine.
   bool decided() const {
@@ -55,9 +56,11 @@ class FrameScheduler {
   /// Runs one query of `pair`; returns the node pairs it evaluated.
   std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
                       const FrameSettings& settings, bool resume);
+  double writePair(DeferredPair& pair, const FrameSettings& settings);
   void writeContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
   double microsLeft(const FrameSettings& settings) const;
+  void updateMargin(const FrameSettings& settings);
   std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting) const;
 
   std::vector<DeferredPair> m_pairs;  // reused: no allocation in steady state
@@ -67,7 +70,12 @@ class FrameScheduler {
   // Measured costs, smoothed over steps: they turn a time budget into node-pair shares and
   // hold back the contact writing. Start values are this machine's order of magnitude.
   double m_microsPerNodePair = 0.25;
-  double m_contactMicrosPerPair = 5.0;
+  double m_writeMicros = 5.0;       // writing a decided pair's contacts
+  double m_lateWriteMicros = 20.0;  // writing a cut pair's, after the queries
+  // Pairs of this step not queried yet, and queried but neither decided nor written.
+  std::size_t m_unqueried = 0;
+  std::size_t m_undecided = 0;
+  double m_margin = 0.0;  // microseconds held back from a time budget (updateMargin)
   bool m_collecting = false;
 };
 

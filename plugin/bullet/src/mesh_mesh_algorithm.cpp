@@ -75,7 +75,7 @@ void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     m_scheduler->defer(detail::DeferredPair{
         this, body0->getCollisionObject(), body1->getCollisionObject(),
         body0->getWorldTransform(), body1->getWorldTransform(), body0->m_partId,
-        body0->m_index, body1->m_partId, body1->m_index, 0, 0.0, StopReason::Completed});
+        body0->m_index, body1->m_partId, body1->m_index, 0, 0.0, StopReason::Completed, false});
     return;
   }
   QuerySettings settings;
