@@ -23,8 +23,8 @@ constexpr double kSmoothing = 0.2;
 // The overshoot margin (updateMargin): its decay per step within budget, and its floor and
 // cap as fractions of the budget. The floor covers what even a perfect estimate overruns by:
 // the last query's clock interval and leaf pair, tens of microseconds.
-constexpr double kMarginDecay = 0.98;
-constexpr double kMinMargin = 0.01;
+constexpr double kMarginDecay = 0.99;
+constexpr double kMinMargin = 0.02;
 constexpr double kMaxMargin = 0.25;
 
 // A quality target needs the paper's best-first traversal; contacts alone are found faster

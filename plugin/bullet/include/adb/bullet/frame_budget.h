@@ -1,15 +1,15 @@
 // FrameSettings and FrameStats: the per-step budget adb::Dispatcher spends on mesh-mesh pairs,
 // the quality knobs of the pair queries and contacts, and what a step actually did.
 //
-// Policy (docs/bullet-budget.md has the measurements): every mesh-mesh pair of the step is
-// first given a share of the budget (what it needed last step, at most an even share of what
-// is left); then, while budget is left, the pair whose contacts are least certain is re-run
-// with twice its previous grant. A pair is certain when its traversal completed (every
-// overlapping triangle pair tested: exact contacts) or reached the quality target (k_min
-// node pairs above p_min). Pairs the budget cut get plausible contacts from their unresolved
-// node pairs with probability >= pAccept. Re-running from scratch wastes at most half of a
-// pair's final grant (the doubling), and keeps every query a pure function of its grant:
-// with a node-pair budget, a step is reproducible bit for bit.
+// Policy (docs/bullet-budget.md has the measurements): pairs with a static body first, then
+// the rest, each pair is given what it needed last step, at most an even share of what is
+// left; then, while budget is left, the pair whose contacts are least certain gets as much
+// again, resumed where it stopped. A pair is certain when its traversal completed (exact
+// contacts, sampled per contact region) or reached the quality target (kMin node pairs above
+// pMin, which needs the paper's best-first traversal; otherwise pairs run depth first). Pairs
+// the budget cut get plausible contacts from their unresolved node pairs with probability >=
+// pAccept. A time budget holds back the contact writing still to come and a margin that
+// follows the overshoot's peaks. With a node-pair budget, a step is reproducible bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -26,9 +26,10 @@ struct FrameSettings {
   std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
   /// A node pair with probability above pMin counts towards kMin (the paper's collision pair).
   double pMin = 0.99;
-  /// Stop refining a pair once kMin node pairs are above pMin (paper Fig. 3) and give it
-  /// plausible contacts. 0 (the default) never stops on quality: pairs are refined to exact
-  /// contacts as far as the budget allows, which is what resting contact needs.
+  /// kMin > 0: pairs run the paper's best-first traversal and stop refining once kMin node
+  /// pairs are above pMin (paper Fig. 3), with plausible contacts. 0 (the default) never
+  /// stops on quality: pairs run depth first (4x cheaper for a pile's contacts) and are
+  /// refined towards exact contacts as far as the budget allows, which resting contact needs.
   int kMin = 0;
   /// An unresolved node pair becomes a plausible contact when its probability is >= pAccept.
   double pAccept = 0.9;
