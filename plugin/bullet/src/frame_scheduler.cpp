@@ -135,7 +135,11 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
     m_microsPerNodePair += kSmoothing * (perPair - m_microsPerNodePair);
   }
   // Total granted this step: a resumed query adds to what it had.
-  pair.grant = resume && grant <= kUnlimited - pair.grant ? pair.grant + grant : grant;
+  if (!resume) {
+    pair.grant = grant;
+  } else {
+    pair.grant = grant <= kUnlimited - pair.grant ? pair.grant + grant : kUnlimited;
+  }
   pair.stop = r.stop;
   ++m_stats.queries;
   m_stats.nodePairs += r.nodePairs;
@@ -150,7 +154,8 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
       pair.confidence = 1.0 - doubtOf(pair.algorithm->openPairs());
       break;
   }
-  return r.nodePairs;
+  // Leaf pairs cost triangle tests, not node pairs: both are progress.
+  return r.nodePairs + r.triangleTests;
 }
 
 // Every pair gets what it needed last step, at most an even share of what is left, so a
@@ -209,23 +214,22 @@ void FrameScheduler::refine(const FrameSettings& settings) {
     const double micros = microsLeft(settings);
     // As much again as it had (doubling its total), at least kMinGrowth more.
     const std::uint64_t more = std::max(pair.grant, kMinGrowth);
+    std::uint64_t progress = 0;
     if (!bestFirst(settings)) {
       // The depth-first traversal resumes where it stopped: nothing is redone.
       const std::uint64_t grant = std::min(more, left);
       if (grant == 0 || !(micros > 0.0)) continue;
-      // A query that could not take a single step (a grant below one expansion, or the clock
-      // already out) would be re-queued forever.
-      if (query(pair, grant, micros, settings, true) == 0) continue;
+      progress = query(pair, grant, micros, settings, true);
     } else {
       // The best-first one starts again with the larger grant.
       const std::uint64_t grant = std::min(pair.grant + more, left);
       if (grant <= pair.grant || !(micros > 0.0)) continue;
-      if (query(pair, grant, micros, settings, false) == 0) continue;
+      progress = query(pair, grant, micros, settings, false);
     }
     if (pair.decided()) {
       --m_undecided;
       writePair(pair, settings);
-    } else {
+    } else if (progress > 0) {  // one that could not take a step would be re-run forever
       m_order.push_back(static_cast<std::uint32_t>(&pair - m_pairs.data()));
       std::push_heap(m_order.begin(), m_order.end(), moreCertain);
     }

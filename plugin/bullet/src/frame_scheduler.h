@@ -53,7 +53,7 @@ class FrameScheduler {
 
   void firstPass(const FrameSettings& settings);
   void refine(const FrameSettings& settings);
-  /// Runs one query of `pair`; returns the node pairs it evaluated.
+  /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
   std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
                       const FrameSettings& settings, bool resume);
   double writePair(DeferredPair& pair, const FrameSettings& settings);

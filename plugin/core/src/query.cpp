@@ -43,14 +43,18 @@ struct QueryScratchAccess {
   static std::vector<Entry>& heap(QueryScratch& s) { return s.m_heap; }
   static std::vector<Witness>& witnesses(QueryScratch& s) { return s.m_witnesses; }
   static std::vector<std::uint32_t>& regionHits(QueryScratch& s) { return s.m_regionHits; }
-  // Whether `s` holds an exact query of trees a and b that a budget stopped.
+  // Whether `s` holds an exact query of trees a and b that a budget stopped. The node
+  // counts guard the stack's indices should another tree have taken a freed one's address.
   static bool resumable(const QueryScratch& s, const AdbTree& a, const AdbTree& b) {
-    return s.m_resumeA == &a && s.m_resumeB == &b;
+    return s.m_resumeA == &a && s.m_resumeB == &b && s.m_resumeNodesA == a.nodes().size() &&
+           s.m_resumeNodesB == b.nodes().size();
   }
   static bool& resumeHit(QueryScratch& s) { return s.m_resumeHit; }
   static void markResumable(QueryScratch& s, const AdbTree* a, const AdbTree* b) {
     s.m_resumeA = a;
     s.m_resumeB = b;
+    s.m_resumeNodesA = a ? a->nodes().size() : 0;
+    s.m_resumeNodesB = b ? b->nodes().size() : 0;
   }
 };
 
@@ -67,6 +71,13 @@ constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
 constexpr unsigned kClockInterval = 64;
 
 bool heapLess(const Entry& x, const Entry& y) { return x.p < y.p; }
+
+// The doubt an unresolved pair carries: Pr[X >= 1], or where rounding left one side no
+// possible collision cell (so Pr[X >= 1] = 0 for boxes that do overlap), E[X] before
+// rounding, as for a pruned pair (Markov).
+double doubtOf(const detail::PairEstimate& est) {
+  return est.upper > 0.0 ? est.upper : est.expected;
+}
 
 // Whether boxes [loX, hiX] and [loY, hiY] are separated along some axis by more than `gap`.
 bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& hiY, double gap) {
@@ -265,6 +276,7 @@ class Traversal {
         if (testLeaves(e.a, e.b, e.region)) {
           hit = true;
           if (m_settings.stopAtFirstHit) {
+            m_heap.clear();  // decided: nothing is left open
             finish(true, 1.0, StopReason::ExactHit);
             return;
           }
@@ -292,7 +304,7 @@ class Traversal {
   // --- ADB mode: the paper's priority traversal ----------------------------------------
   void push(const detail::PairEstimate& est, std::uint32_t a, std::uint32_t b,
             std::uint32_t region, int da, int db) {
-    const Entry e{static_cast<float>(est.lower), static_cast<float>(est.upper), a, b, region,
+    const Entry e{static_cast<float>(est.lower), static_cast<float>(doubtOf(est)), a, b, region,
                   static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)};
     m_heap.push_back(e);
     std::push_heap(m_heap.begin(), m_heap.end(), heapLess);
@@ -336,6 +348,8 @@ class Traversal {
       if (testLeaves(e.a, e.b, e.region)) {
         m_exactHit = true;
         if (m_settings.stopAtFirstHit) {
+          dropFullRegions();
+          std::make_heap(m_heap.begin(), m_heap.end(), heapLess);
           finish(true, 1.0, StopReason::ExactHit);
           return true;
         }
@@ -368,6 +382,8 @@ class Traversal {
             addWitness(w);
           }
           if (m_result.collisionPairs >= static_cast<std::uint32_t>(m_settings.kMin)) {
+            dropFullRegions();
+            std::make_heap(m_heap.begin(), m_heap.end(), heapLess);
             finish(true, m_exactHit ? 1.0 : m_bestAccepted, StopReason::QualityReached);
             return true;
           }
@@ -413,7 +429,7 @@ class Traversal {
       const detail::PairEstimate est =
           detail::estimatePair(m_a, e.a, e.depthA, m_b, e.b, e.depthB, m_frame);
       e.p = static_cast<float>(est.lower);
-      e.upper = static_cast<float>(est.upper);
+      e.upper = static_cast<float>(doubtOf(est));
       doubt += e.upper;
     }
     return doubt;

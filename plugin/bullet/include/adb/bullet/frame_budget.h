@@ -53,7 +53,8 @@ struct FrameStats {
   std::uint32_t exactContacts = 0;  ///< contact points from intersecting triangle pairs
   std::uint32_t plausibleContacts = 0;  ///< contact points from unresolved node pairs
   double micros = 0.0;              ///< wall clock of the step's pair work, contacts included
-  double contactMicros = 0.0;       ///< of which writing contacts (after the queries)
+  double contactMicros = 0.0;       ///< of which writing contacts (decided pairs at once, cut
+                                    ///< ones after the queries)
   /// Per pair: 1 when decided exactly; the quality answer's confidence when stopped on
   /// quality; otherwise 1 - min(1, sum of Pr[X >= 1] over its unresolved node pairs), the
   /// chance that no intersecting triangle pair is left unseen.

@@ -69,9 +69,9 @@ struct QuerySettings {
   int regionDepth = 8;
   /// Exact mode: continue the last query of this scratch where a budget stopped it, with
   /// this call's budgets as the additional allowance, instead of starting again. The trees
-  /// must be the same ones (otherwise the query starts afresh) and the poses and the other
-  /// settings the caller's business: the same as before. Witnesses accumulate; the result's
-  /// counters are this call's work.
+  /// must be the same, still alive objects (other trees start afresh; a scratch does not own
+  /// them) and the poses and other settings the same as before: the caller's business.
+  /// Witnesses accumulate; the result's counters are this call's work.
   bool resume = false;
 };
 
@@ -133,6 +133,7 @@ class QueryScratch {
   // What QuerySettings::resume continues: set when an exact query stopped on a budget.
   const AdbTree* m_resumeA = nullptr;
   const AdbTree* m_resumeB = nullptr;
+  std::size_t m_resumeNodesA = 0, m_resumeNodesB = 0;
   bool m_resumeHit = false;  // that query had found an intersecting triangle pair
 };
 
