@@ -9,6 +9,8 @@
 #include <BulletCollision/Gimpact/btGImpactShape.h>
 
 #include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -307,21 +309,43 @@ TEST(FrameBudget, NodePairBudgetGivesBitIdenticalTrajectories) {
   EXPECT_EQ(budgetedRun(1500), budgetedRun(1500));
 }
 
+// Wall-clock and this thread's CPU time, in microseconds.
+double wallMicros() {
+  return std::chrono::duration<double, std::micro>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+double threadCpuMicros() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e6 * static_cast<double>(t.tv_sec) + 1e-3 * static_cast<double>(t.tv_nsec);
+}
+
 TEST(FrameBudget, TimeBudgetHoldsWithinASmallOvershoot) {
   // 300 us per step for the pile's mesh-mesh pairs. Overshoot comes from work the traversal
   // does not interrupt (one leaf pair, the clock read every 64 units) and from contact
-  // writing, which is held back by last step's cost. Most steps stay within budget + 200 us;
+  // writing, which is held back at its measured cost. Most steps stay within budget + 200 us;
   // the slack is for a shared, noisy machine (and the sanitizer build).
   FrameSettings f;
   f.budgetMicros = 300;
   World w(test::Dispatch::Adb, f);
   addPile(w);
   std::vector<double> used;
+  int preempted = 0;
   for (int step = 0; step < 120; ++step) {
+    const double wall0 = wallMicros(), cpu0 = threadCpuMicros();
     w.step();
+    // A step the OS took the thread away from (its wall clock 1 ms beyond its CPU time:
+    // seen under ctest -j2 beside another test, in 4 ms slices) says nothing about the
+    // scheduler, which cannot see it coming: left out, and counted.
+    if ((wallMicros() - wall0) - (threadCpuMicros() - cpu0) > 1000.0) {
+      ++preempted;
+      continue;
+    }
     const FrameStats& s = w.adbDispatcher->lastFrameStats();
     if (s.pairs > 0) used.push_back(s.micros);
   }
+  EXPECT_LT(preempted, 60) << "the machine was too busy for this test to mean anything";
   ASSERT_GT(used.size(), 30u);
   std::sort(used.begin(), used.end());
 #ifdef __SANITIZE_ADDRESS__
