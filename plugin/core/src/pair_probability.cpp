@@ -118,6 +118,17 @@ bool nodesOverlap(const TreeConstants& ta, std::uint32_t ia, const TreeConstants
   return mapAndTestAll(ta, ia, tb, ib, f, boxes);
 }
 
+double overlapDepth(const TreeConstants& ta, std::uint32_t ia, const TreeConstants& tb,
+                    std::uint32_t ib, const RelativeFrame& f) {
+  BoxPair p;
+  if (!mapAndTestAll(ta, ia, tb, ib, f, p)) return -1.0;
+  // The boxes' overlap along each of the six face axes; the smallest is how far they would
+  // have to move apart along a face axis.
+  const Vec3 inA = p.hA + p.bInA.h - (p.bInA.c - p.cA).cwiseAbs();
+  const Vec3 inB = p.hB + p.aInB.h - (p.aInB.c - p.cB).cwiseAbs();
+  return std::max(0.0, std::min(inA.minCoeff(), inB.minCoeff()));
+}
+
 PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t ia, int depthA,
                           const TreeConstants& tb, std::uint32_t ib, int depthB,
                           const RelativeFrame& f) {

@@ -54,6 +54,11 @@ struct PairEstimate {
 bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
                   std::uint32_t b, const RelativeFrame& frame);
 
+/// nodesOverlap, and for overlapping nodes how deeply their boxes overlap (>= 0: the smallest
+/// overlap along the six face axes); negative when they are apart.
+double overlapDepth(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
+                    std::uint32_t b, const RelativeFrame& frame);
+
 /// Overlap test plus, when they overlap, the probability of the pair at the given depths.
 PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t a, int depthA,
                           const TreeConstants& tb, std::uint32_t b, int depthB,

@@ -287,15 +287,30 @@ class Traversal {
       const int na2 = children(na, e.a, ca), nb2 = children(nb, e.b, cb);
       const int da = na.isLeaf() ? e.depthA : e.depthA + 1;
       const int db = nb.isLeaf() ? e.depthB : e.depthB + 1;
+      // The overlapping children go on the stack shallowest first, so that the deepest
+      // overlap is explored first: a budget that cuts the descent has then seen the deepest
+      // contacts, the ones that keep bodies apart.
+      Entry kids[4];
+      float depth[4];
+      int count = 0;
       for (int i = 0; i < na2; ++i) {
         for (int j = 0; j < nb2; ++j) {
           ++m_result.nodePairs;
-          if (detail::nodesOverlap(m_a, ca[i], m_b, cb[j], m_frame)) {
-            m_heap.push_back(Entry{1.0f, 1.0f, ca[i], cb[j], childRegion(e.region, da, db),
-                                   static_cast<std::uint16_t>(da),
-                                   static_cast<std::uint16_t>(db)});
+          const double d = detail::overlapDepth(m_a, ca[i], m_b, cb[j], m_frame);
+          if (d < 0.0) continue;
+          int k = count++;
+          for (; k > 0 && depth[k - 1] > static_cast<float>(d); --k) {
+            kids[k] = kids[k - 1];
+            depth[k] = depth[k - 1];
           }
+          kids[k] = Entry{1.0f, 1.0f, ca[i], cb[j], kNoRegion, static_cast<std::uint16_t>(da),
+                          static_cast<std::uint16_t>(db)};
+          depth[k] = static_cast<float>(d);
         }
+      }
+      for (int k = 0; k < count; ++k) {
+        kids[k].region = childRegion(e.region, da, db);
+        m_heap.push_back(kids[k]);
       }
     }
     finish(hit, 1.0, StopReason::Completed);
