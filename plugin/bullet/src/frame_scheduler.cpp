@@ -10,11 +10,11 @@
 namespace adb::detail {
 namespace {
 
-// The first grant of a pair never seen decided: a few levels of both trees. Smaller grants
-// would mostly be re-run; larger ones starve the other pairs of a tight budget.
+// The smallest first grant: a few levels of both trees. Smaller grants would mostly need a
+// second query; larger ones starve the other pairs of a tight budget.
 constexpr std::uint64_t kFirstGrant = 256;
-// A re-run gets at least this many node pairs more than before: doubling from tiny grants
-// would spend the step on restarts.
+// A refinement gets at least this many node pairs more: doubling from tiny grants would
+// spend the step on the queries' fixed costs (and, best first, on restarts).
 constexpr std::uint64_t kMinGrowth = 64;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 // Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
@@ -158,8 +158,9 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   return r.nodePairs + r.triangleTests;
 }
 
-// Every pair gets what it needed last step, at most an even share of what is left, so a
-// tight budget still reaches every pair before any is refined. Pairs with a static (or
+// Every pair gets what it needed last step and a quarter more (at least kFirstGrant; a cut
+// pair's need is twice what it used), at most an even share of what is left, so a tight
+// budget still reaches every pair before any is refined. Pairs with a static (or
 // kinematic) body go first and share the budget among themselves: a missed contact between
 // two moving bodies lets them overlap for a step, a missed one with the world loses a body
 // through the floor.
@@ -190,8 +191,9 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
   }
 }
 
-// While budget is left, the least certain pair is re-run with twice its grant (ties: the
-// earlier pair, so that node-pair budgets stay reproducible).
+// While budget is left, the least certain pair gets as much again as it had: resumed depth
+// first, re-run best first (ties: pairs with a static body, then the earlier pair, so that
+// node-pair budgets stay reproducible).
 void FrameScheduler::refine(const FrameSettings& settings) {
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
