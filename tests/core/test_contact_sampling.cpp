@@ -1,5 +1,5 @@
 // What contact generation asks of a query beyond a yes/no: sampled hits per contact region
-// (QuerySettings::hitsPerRegion), resuming a query a budget cut (QuerySettings::resume), and
+// (QuerySettings::hitsPerRegion), running a query in steps (Traversal), and
 // the model's estimates of the pairs an exact query leaves when it is cut.
 #include <gtest/gtest.h>
 
@@ -108,9 +108,9 @@ TEST_F(OverlappingTori, BestFirstSamplingAgreesWithExactMode) {
   }
 }
 
-// A query cut every 37 node pairs and resumed until it completes does exactly the work of
-// one uninterrupted (budgeted) query: same node pairs in all, same hits in the same order.
-TEST_F(OverlappingTori, ResumedQueryEqualsAnUninterruptedOne) {
+// A query run in steps of 37 node pairs until it completes does exactly the work of one
+// uninterrupted (budgeted) query: same node pairs in all, same hits in the same order.
+TEST_F(OverlappingTori, ATraversalRunInStepsEqualsAnUninterruptedQuery) {
   for (bool sampled : {false, true}) {
     for (const PosePair& p : poses) {
       QuerySettings s = allHits();
@@ -125,57 +125,90 @@ TEST_F(OverlappingTori, ResumedQueryEqualsAnUninterruptedOne) {
       ASSERT_EQ(whole.stop, StopReason::Completed);
       const std::vector<Witness> wholeHits = scratch.witnesses();
 
-      QueryScratch parts;
-      s.budgetNodePairs = 37;
-      QueryResult r = collide(tree, p.a, tree, p.b, s, parts);
-      std::uint64_t nodePairs = r.nodePairs;
-      int calls = 1;
-      s.resume = true;
-      while (r.stop == StopReason::WorkBudget && calls < 100000) {
-        EXPECT_LE(r.nodePairs, 37u);
-        r = collide(tree, p.a, tree, p.b, s, parts);
-        nodePairs += r.nodePairs;
-        ++calls;
+      Traversal parts(tree, p.a, tree, p.b, s);
+      std::uint64_t nodePairs = 0;
+      int steps = 0;
+      while (!parts.done() && steps < 100000) {
+        parts.step(StepBudget{37});
+        EXPECT_LE(parts.lastStep().nodePairs, 37u);
+        nodePairs += parts.lastStep().nodePairs;
+        ++steps;
       }
+      const QueryResult& r = parts.result();
       ASSERT_EQ(r.stop, StopReason::Completed);
       EXPECT_EQ(r.collides, whole.collides);
       EXPECT_EQ(nodePairs, whole.nodePairs);
+      EXPECT_EQ(r.nodePairs, whole.nodePairs);  // the result counts every step
       ASSERT_EQ(parts.witnesses().size(), wholeHits.size());
       for (std::size_t i = 0; i < wholeHits.size(); ++i) {
         EXPECT_EQ(parts.witnesses()[i].triangleA, wholeHits[i].triangleA);
         EXPECT_EQ(parts.witnesses()[i].triangleB, wholeHits[i].triangleB);
       }
       if (whole.nodePairs > 37) {
-        EXPECT_GT(calls, 1);
+        EXPECT_GT(steps, 1);
       }
     }
   }
 }
 
-TEST_F(OverlappingTori, ResumeStartsAfreshForOtherTreesOrACompletedQuery) {
+// Found by fuzzing: steps of 1 to 3 node pairs (less than one expansion) used to make no
+// progress, so a caller looping until done livelocked. Every step with a non-zero budget
+// now takes at least one pair off the frontier, and every pair on it was counted once when
+// it was tested, so the steps are at most the uninterrupted query's node pairs (+1 for the
+// roots). Both modes end with the uninterrupted query's answer and work.
+TEST_F(OverlappingTori, StepsSmallerThanOneExpansionStillProgress) {
+  const PosePair& p = poses.front();
+  for (QueryMode mode : {QueryMode::Exact, QueryMode::Adb}) {
+    QuerySettings s = allHits();
+    s.mode = mode;
+    s.pruneImprobable = false;  // ADB then completes with the exact answer
+    s.budgetNodePairs = std::numeric_limits<std::uint64_t>::max() - 1;
+    const QueryResult whole = collide(tree, p.a, tree, p.b, s, scratch);
+    for (std::uint64_t budget : {1u, 2u, 3u}) {
+      Traversal t(tree, p.a, tree, p.b, s);
+      int steps = 0;
+      const std::uint64_t bound = whole.nodePairs + 1;
+      while (!t.done() && steps <= static_cast<int>(bound)) {
+        t.step(StepBudget{budget});
+        ++steps;
+      }
+      ASSERT_TRUE(t.done()) << "no end after " << steps << " steps; mode "
+                            << static_cast<int>(mode) << ", budget " << budget;
+      EXPECT_LE(static_cast<std::uint64_t>(steps), bound);
+      EXPECT_EQ(t.result().collides, whole.collides);
+      EXPECT_EQ(t.result().nodePairs, whole.nodePairs) << "budget " << budget;
+    }
+  }
+}
+
+// A zero budget is the one step that may do nothing: it says so (WorkBudget) and changes
+// nothing; a finished traversal's step returns the same result; reset() starts afresh, also
+// on other trees.
+TEST_F(OverlappingTori, ZeroStepsDoNothingAndResetStartsAfresh) {
   const PosePair& p = poses.front();
   QuerySettings s = allHits();
-  const QueryResult whole = collide(tree, p.a, tree, p.b, s, scratch);
-  ASSERT_EQ(whole.stop, StopReason::Completed);
-  s.resume = true;  // nothing to resume: the same query again
-  const QueryResult again = collide(tree, p.a, tree, p.b, s, scratch);
-  EXPECT_EQ(again.nodePairs, whole.nodePairs);
-  EXPECT_EQ(again.witnessCount, whole.witnessCount);
+  Traversal t(tree, p.a, tree, p.b, s);
+  t.step(StepBudget{5});
+  const std::uint64_t after = t.result().nodePairs;
+  ASSERT_FALSE(t.done());
+  t.step(StepBudget{0});
+  EXPECT_EQ(t.result().nodePairs, after);
+  EXPECT_EQ(t.result().stop, StopReason::WorkBudget);
+  t.step();
+  ASSERT_TRUE(t.done());
+  const QueryResult final = t.result();
+  t.step();
+  EXPECT_EQ(t.result().nodePairs, final.nodePairs);
+  EXPECT_EQ(t.lastStep().nodePairs, 0u);
 
-  // Cut on one pair of trees, resumed on another: a fresh query of the other.
   const TriangleMesh small = gen::makeTorus(1.0, 0.35, 12, 6);
   const AdbTree other(small);
-  s.resume = false;
-  s.budgetNodePairs = 5;
-  ASSERT_EQ(collide(tree, p.a, tree, p.b, s, scratch).stop, StopReason::WorkBudget);
-  s.resume = true;
-  s.budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
-  const QueryResult fresh = collide(other, p.a, other, p.b, s, scratch);
+  t.reset(other, p.a, other, p.b, s);
+  t.step();
   QueryScratch clean;
-  s.resume = false;
   const QueryResult expected = collide(other, p.a, other, p.b, s, clean);
-  EXPECT_EQ(fresh.nodePairs, expected.nodePairs);
-  EXPECT_EQ(fresh.witnessCount, expected.witnessCount);
+  EXPECT_EQ(t.result().nodePairs, expected.nodePairs);
+  EXPECT_EQ(t.result().witnessCount, expected.witnessCount);
 }
 
 TEST_F(OverlappingTori, ACutExactQueryEstimatesWhatItLeft) {

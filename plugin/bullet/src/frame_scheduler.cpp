@@ -130,15 +130,13 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
     q.nodeWitnesses = false;    // the 64 witness slots are for triangle pairs
   } else {
     q.mode = QueryMode::Exact;
-    q.resume = resume;
   }
-  if (!unbudgeted(settings)) {
-    q.budgetNodePairs = grant;
-    q.budgetMicros = micros;
-  }
-  const QueryResult r = pair.algorithm->query(pair, q);
-  if (r.nodePairs >= kFirstGrant && r.seconds > 0.0) {  // long enough to measure
-    const double perPair = r.seconds * 1e6 / static_cast<double>(r.nodePairs);
+  StepBudget budget;
+  if (!unbudgeted(settings)) budget = StepBudget{grant, micros};
+  const QueryResult& r = pair.algorithm->query(pair, q, budget, resume);
+  const StepWork& work = pair.algorithm->lastStep();
+  if (work.nodePairs >= kFirstGrant && work.seconds > 0.0) {  // long enough to measure
+    const double perPair = work.seconds * 1e6 / static_cast<double>(work.nodePairs);
     m_microsPerNodePair += kSmoothing * (perPair - m_microsPerNodePair);
   }
   // Total granted this step: a resumed query adds to what it had.
@@ -149,7 +147,7 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   }
   pair.stop = r.stop;
   ++m_stats.queries;
-  m_stats.nodePairs += r.nodePairs;
+  m_stats.nodePairs += work.nodePairs;
   switch (r.stop) {
     case StopReason::Completed:
       pair.confidence = 1.0;
@@ -162,7 +160,7 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
       break;
   }
   // Leaf pairs cost triangle tests, not node pairs: both are progress.
-  return r.nodePairs + r.triangleTests;
+  return work.nodePairs + work.triangleTests;
 }
 
 // Every pair gets what it needed last step and a quarter more (at least kFirstGrant; a cut
@@ -226,8 +224,9 @@ void FrameScheduler::refine(const FrameSettings& settings) {
     std::uint64_t progress = 0;
     if (!bestFirst(settings)) {
       // The depth-first traversal resumes where it stopped: nothing is redone.
+      // A grant smaller than one expansion could only be used by overshooting the step.
       const std::uint64_t grant = std::min(more, left);
-      if (grant == 0 || !(micros > 0.0)) continue;
+      if (grant < kNodePairsPerExpansion || !(micros > 0.0)) continue;
       progress = query(pair, grant, micros, settings, true);
     } else {
       // The best-first one starts again with the larger grant.

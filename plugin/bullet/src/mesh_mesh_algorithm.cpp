@@ -80,28 +80,31 @@ void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   }
   QuerySettings settings;
   settings.mode = QueryMode::Exact;
-  m_lastStop = collide(meshOf(body0).tree(), toPose(body0->getWorldTransform()),
-                       meshOf(body1).tree(), toPose(body1->getWorldTransform()),
-                       forContacts(settings), m_scratch)
-                   .stop;
+  m_traversal.reset(meshOf(body0).tree(), toPose(body0->getWorldTransform()),
+                    meshOf(body1).tree(), toPose(body1->getWorldTransform()),
+                    forContacts(settings));
+  m_lastStop = m_traversal.step().stop;
   addContacts(body0, body1, *result, FrameSettings{});
 }
 
-QueryResult MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
-                                     const QuerySettings& settings) {
-  const auto& shape0 = *static_cast<const MeshShape*>(pair.object0->getCollisionShape());
-  const auto& shape1 = *static_cast<const MeshShape*>(pair.object1->getCollisionShape());
-  const QueryResult r = collide(shape0.tree(), toPose(pair.transform0), shape1.tree(),
-                                toPose(pair.transform1), forContacts(settings), m_scratch);
+const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
+                                            const QuerySettings& settings,
+                                            const StepBudget& budget, bool resume) {
+  if (!resume) {
+    const auto& shape0 = *static_cast<const MeshShape*>(pair.object0->getCollisionShape());
+    const auto& shape1 = *static_cast<const MeshShape*>(pair.object1->getCollisionShape());
+    m_traversal.reset(shape0.tree(), toPose(pair.transform0), shape1.tree(),
+                      toPose(pair.transform1), forContacts(settings));
+  }
+  const QueryResult& r = m_traversal.step(budget);
   m_lastStop = r.stop;
-  // A resumed query's counters are its own work: the pair's total is summed here.
-  m_used = (settings.resume ? m_used : 0) + r.nodePairs;
+  // The result's counters cover every step of this query: what the pair used this frame.
   if (r.stop == StopReason::Completed || r.stop == StopReason::QualityReached) {
-    m_needed = m_used;
+    m_needed = r.nodePairs;
   } else {
     // Cut: it needs more than it had. Without this a pair first met while barely touching
     // would be granted its old need step after step while the bodies sink into each other.
-    m_needed = std::max(m_needed, 2 * m_used);
+    m_needed = std::max(m_needed, 2 * r.nodePairs);
   }
   return r;
 }
@@ -129,9 +132,9 @@ ContactCount MeshMeshAlgorithm::addContacts(const btCollisionObjectWrapper* body
                                 shape0.data().facing, shape1.data().facing};
   const Vec3 hint = detail::separationHint(manifold, boxCentre(body0), boxCentre(body1));
   ContactCount count;
-  count.exact = detail::addExactContacts(posed, m_scratch.witnesses(), hint, result);
+  count.exact = detail::addExactContacts(posed, m_traversal.witnesses(), hint, result);
   if (m_lastStop != StopReason::Completed) {
-    count.plausible = detail::addPlausibleContacts(posed, m_scratch.openPairs(), settings,
+    count.plausible = detail::addPlausibleContacts(posed, m_traversal.openPairs(), settings,
                                                    hint, result, *manifold);
   }
   result.refreshContactPoints();

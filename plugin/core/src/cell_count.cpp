@@ -102,6 +102,7 @@ void fillCellStatistics(AdbTree& tree) {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const GridShape shape = shapeOf(tree, nodes[i]);
     cells[i].side = static_cast<float>(shape.side);
+    cells[i].invSide = 1.0f / cells[i].side;  // side >= kTinyExtent: finite in float
     cells[i].density =
         static_cast<float>(std::clamp(nodes[i].pc / static_cast<double>(shape.count()), 0.0, 1.0));
   }

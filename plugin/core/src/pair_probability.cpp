@@ -26,64 +26,28 @@ namespace {
 // Transform-rounding tolerance of the overlap test, relative to the scene's magnitude.
 constexpr double kOverlapRelativeSlack = 1e-12;
 
-// One box seen from the other's frame: the AABB (centre c, half extent h) of the mapped box.
-struct MappedBox {
-  Vec3 c, h;
-};
-
-struct BoxPair {
-  Vec3 cA, hA, cB, hB;  // each box in its own frame
-  MappedBox bInA, aInB;
-};
-
-// Maps the boxes into each other's frame and tests the 6 face axes of the separating-axis
-// test on the way: B's box on A's axes first, and only if that overlaps, A's box on B's axes.
-// The 9 edge-edge axes would prune a few more pairs at twice the cost.
-bool mapAndTest(const Node& a, const Node& b, const RelativeFrame& f, BoxPair& p) {
-  p.cA = 0.5 * (a.boxHi() + a.boxLo());
-  p.hA = 0.5 * (a.boxHi() - a.boxLo());
-  p.cB = 0.5 * (b.boxHi() + b.boxLo());
-  p.hB = 0.5 * (b.boxHi() - b.boxLo());
-  p.bInA = {mul(f.rBA, p.cB) + f.tBA, mul(f.absBA, p.hB)};
-  const Vec3 dA = (p.bInA.c - p.cA).cwiseAbs();
-  if ((dA.array() > (p.hA + p.bInA.h).array() + f.slack).any()) return false;
-  p.aInB = {mul(f.rAB, p.cA) + f.tAB, mul(f.absAB, p.hA)};
-  const Vec3 dB = (p.aInB.c - p.cB).cwiseAbs();
-  return !(dB.array() > (p.hB + p.aInB.h).array() + f.slack).any();
-}
-
-// The other node's box (centre `c` already in this node's frame, half extents `h` along its
-// own axes, `otherToThisT` the transpose of the map from its frame into this one) against this
-// node's slab.
-bool slabOverlaps(const NodeDistribution& d, const Vec3& c, const Vec3& h,
-                  const Mat3& otherToThisT, double slack) {
-  const Vec3 n(d.normal[0], d.normal[1], d.normal[2]);
-  // The box's radius along n: sum over its axes of |n . mapped axis| * half extent.
-  const double radius = mul(otherToThisT, n).cwiseAbs().dot(h);
-  return std::abs(n.dot(c) - d.offset) <= d.halfWidth + radius + slack;
-}
-
-// Boxes, then slabs: a curved sheet's nodes are thin along their mean normal, so the slab
-// rejects near misses the boxes cannot (measured in docs/core-results.md).
-bool mapAndTestAll(const TreeConstants& ta, std::uint32_t ia, const TreeConstants& tb,
-                   std::uint32_t ib, const RelativeFrame& f, BoxPair& p) {
-  if (!mapAndTest(ta.tree->nodes()[ia], tb.tree->nodes()[ib], f, p)) return false;
-  return slabOverlaps(ta.tree->distributions()[ia], p.bInA.c, p.hB, f.rBAt, f.slack) &&
-         slabOverlaps(tb.tree->distributions()[ib], p.aInB.c, p.hA, f.rABt, f.slack);
-}
-
-// Cells of side `cell` touched by the intersection of box (c, h) with a mapped box; at least
-// one per axis.
-double touchedCells(const Vec3& c, const Vec3& h, const MappedBox& other, double cell) {
-  const Vec3 lo = (c - h).cwiseMax(other.c - other.h);
-  const Vec3 hi = (c + h).cwiseMin(other.c + other.h);
-  return ((hi - lo) / cell).cwiseMax(Vec3::Ones()).prod();
+// Cells of side 1 / invCell touched by the intersection of box (c, h) with box (oc, oh) of
+// the same frame; at least one per axis.
+double touchedCells(const Vec3& c, const Vec3& h, const Vec3& oc, const Vec3& oh,
+                    double invCell) {
+  const Vec3 lo = (c - h).cwiseMax(oc - oh);
+  const Vec3 hi = (c + h).cwiseMin(oc + oh);
+  return ((hi - lo) * invCell).cwiseMax(Vec3::Ones()).prod();
 }
 
 int roundCount(double x, int cap) {
   // x is finite and >= 0 by construction; the clamp keeps a corrupt value from overflowing.
   if (!(x > 0.0)) return 0;
   return static_cast<int>(std::min(std::floor(x + 0.5), static_cast<double>(cap)));
+}
+
+// Node `self`'s slab against the other node's box: the box's centre seen in self's frame, and
+// its radius along self's slab normal (self.slabReach . the other's own half extents).
+bool slabOverlaps(const PosedNode& self, const PosedNode& other, double slack) {
+  const NodeDistribution& d = *self.d;
+  const double centre = d.normal[0] * other.cOther[0] + d.normal[1] * other.cOther[1] +
+                        d.normal[2] * other.cOther[2];
+  return std::abs(centre - d.offset) <= d.halfWidth + self.slabReach.dot(other.h) + slack;
 }
 
 }  // namespace
@@ -112,50 +76,117 @@ RelativeFrame RelativeFrame::between(const AdbTree& a, const Pose& poseA, const 
   return f;
 }
 
-bool nodesOverlap(const TreeConstants& ta, std::uint32_t ia, const TreeConstants& tb,
-                  std::uint32_t ib, const RelativeFrame& f) {
-  BoxPair boxes;
-  return mapAndTestAll(ta, ia, tb, ib, f, boxes);
-}
-
-double overlapDepth(const TreeConstants& ta, std::uint32_t ia, const TreeConstants& tb,
-                    std::uint32_t ib, const RelativeFrame& f) {
-  BoxPair p;
-  if (!mapAndTestAll(ta, ia, tb, ib, f, p)) return -1.0;
-  // The boxes' overlap along each of the six face axes; the smallest is how far they would
-  // have to move apart along a face axis.
-  const Vec3 inA = p.hA + p.bInA.h - (p.bInA.c - p.cA).cwiseAbs();
-  const Vec3 inB = p.hB + p.aInB.h - (p.aInB.c - p.cB).cwiseAbs();
-  return std::max(0.0, std::min(inA.minCoeff(), inB.minCoeff()));
-}
-
-PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t ia, int depthA,
-                          const TreeConstants& tb, std::uint32_t ib, int depthB,
-                          const RelativeFrame& f) {
+PairEstimate estimateOverlapping(const PosedNode& a, int depthA, const PosedNode& b, int depthB,
+                                 int maxDepthA, int maxDepthB) {
   PairEstimate e;
-  BoxPair boxes;
-  if (!mapAndTestAll(ta, ia, tb, ib, f, boxes)) return e;
   e.overlap = true;
-
-  const NodeDistribution& cellsA = ta.tree->distributions()[ia];
-  const NodeDistribution& cellsB = tb.tree->distributions()[ib];
-  const double cell = std::max(cellsA.side, cellsB.side);  // > 0: sides are floored
-  const double touched = std::min(touchedCells(boxes.cA, boxes.hA, boxes.bInA, cell),
-                                  touchedCells(boxes.cB, boxes.hB, boxes.aInB, cell));
+  // The common cell is the coarser node's (sides are floored, so both are > 0); the finer
+  // node's density is re-expressed at that size (see the file comment, step 3).
+  const NodeDistribution& cellsA = *a.d;
+  const NodeDistribution& cellsB = *b.d;
+  const bool aCoarser = cellsA.side >= cellsB.side;
+  const double invCell = aCoarser ? cellsA.invSide : cellsB.invSide;
+  const double touched = std::min(touchedCells(a.c, a.h, b.cOther, b.hOther, invCell),
+                                  touchedCells(b.c, b.h, a.cOther, a.hOther, invCell));
   e.s = std::max(1, roundCount(touched, kMaxBins));
-  const double rhoA = std::min(1.0, cellsA.density * (cell / cellsA.side));
-  const double rhoB = std::min(1.0, cellsB.density * (cell / cellsB.side));
+  const double rhoA =
+      aCoarser ? cellsA.density
+               : std::min(1.0, static_cast<double>(cellsA.density) * cellsB.side * cellsA.invSide);
+  const double rhoB =
+      aCoarser ? std::min(1.0, static_cast<double>(cellsB.density) * cellsA.side * cellsB.invSide)
+               : cellsB.density;
   e.sA = std::min(e.s, roundCount(rhoA * e.s, kMaxBins));
   e.sB = std::min(e.s, roundCount(rhoB * e.s, kMaxBins));
   // E[X] = v w / u before rounding: a pair that rounding prunes (s_A or s_B = 0) keeps this
   // much doubt in the confidence (Markov: Pr[X >= 1] <= E[X]).
   e.expected = std::min(1.0, rhoA * rhoB * e.s);
   if (e.sA == 0 || e.sB == 0) return e;  // no possible collision cell on one side: p = 0
-  const double lb = cellIntersectionBound(depthA, depthB, ta.maxDepth, tb.maxDepth);
+  const double lb = cellIntersectionBound(depthA, depthB, maxDepthA, maxDepthB);
   const CollisionEstimate c = estimateCollision(e.s, e.sA, e.sB, lb);
   e.lower = c.lower;
   e.upper = c.upper;
   return e;
+}
+
+PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t a, int depthA,
+                          const TreeConstants& tb, std::uint32_t b, int depthB,
+                          const RelativeFrame& frame) {
+  ChildPairs pair(*ta.tree, &a, 1, *tb.tree, &b, 1, frame);
+  if (!pair.overlap(0, 0)) return PairEstimate{};
+  return estimateOverlapping(pair.a(0), depthA, pair.b(0), depthB, ta.maxDepth, tb.maxDepth);
+}
+
+ChildPairs::ChildPairs(const AdbTree& a, const std::uint32_t* ca, int countA, const AdbTree& b,
+                       const std::uint32_t* cb, int countB, const RelativeFrame& frame)
+    : m_frame(frame) {
+  for (int i = 0; i < countA; ++i) {
+    const Node& n = a.nodes()[ca[i]];
+    m_a[i].c = 0.5 * (n.boxHi() + n.boxLo());
+    m_a[i].h = 0.5 * (n.boxHi() - n.boxLo());
+    m_a[i].d = &a.distributions()[ca[i]];
+  }
+  for (int j = 0; j < countB; ++j) {
+    const Node& n = b.nodes()[cb[j]];
+    PosedNode& p = m_b[j];
+    p.c = 0.5 * (n.boxHi() + n.boxLo());
+    p.h = 0.5 * (n.boxHi() - n.boxLo());
+    p.d = &b.distributions()[cb[j]];
+    p.cOther = mul(frame.rBA, p.c) + frame.tBA;
+    p.hOther = mul(frame.absBA, p.h);
+  }
+}
+
+void ChildPairs::mapA(int i) {
+  if (m_mappedA[i]) return;
+  m_mappedA[i] = true;
+  m_a[i].cOther = mul(m_frame.rAB, m_a[i].c) + m_frame.tAB;
+  m_a[i].hOther = mul(m_frame.absAB, m_a[i].h);
+}
+
+void ChildPairs::reachA(int i) {
+  if (m_reachA[i]) return;
+  m_reachA[i] = true;
+  const NodeDistribution& d = *m_a[i].d;
+  m_a[i].slabReach = mul(m_frame.rBAt, Vec3(d.normal[0], d.normal[1], d.normal[2])).cwiseAbs();
+}
+
+void ChildPairs::reachB(int j) {
+  if (m_reachB[j]) return;
+  m_reachB[j] = true;
+  const NodeDistribution& d = *m_b[j].d;
+  m_b[j].slabReach = mul(m_frame.rABt, Vec3(d.normal[0], d.normal[1], d.normal[2])).cwiseAbs();
+}
+
+// Boxes on both frames' face axes, then slabs: a curved sheet's nodes are thin along their
+// mean normal, so the slab rejects near misses the boxes cannot (measured in
+// docs/core-results.md). The 9 edge-edge axes would prune a few more pairs at twice the cost.
+bool ChildPairs::overlap(int i, int j) {
+  const PosedNode& pa = m_a[i];
+  const PosedNode& pb = m_b[j];
+  const double slack = m_frame.slack;
+  const Vec3 dA = (pb.cOther - pa.c).cwiseAbs();
+  if ((dA.array() > (pa.h + pb.hOther).array() + slack).any()) return false;
+  mapA(i);
+  const Vec3 dB = (pa.cOther - pb.c).cwiseAbs();
+  if ((dB.array() > (pb.h + pa.hOther).array() + slack).any()) return false;
+  reachA(i);
+  if (!slabOverlaps(pa, pb, slack)) return false;
+  reachB(j);
+  return slabOverlaps(pb, pa, slack);
+}
+
+double ChildPairs::overlapDepth(int i, int j) {
+  if (!overlap(i, j)) return -1.0;
+  const PosedNode& pa = m_a[i];
+  const PosedNode& pb = m_b[j];
+  const Vec3 inA = pa.h + pb.hOther - (pb.cOther - pa.c).cwiseAbs();
+  const Vec3 inB = pb.h + pa.hOther - (pa.cOther - pb.c).cwiseAbs();
+  return std::max(0.0, std::min(inA.minCoeff(), inB.minCoeff()));
+}
+
+bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
+                  std::uint32_t b, const RelativeFrame& frame) {
+  return ChildPairs(*ta.tree, &a, 1, *tb.tree, &b, 1, frame).overlap(0, 0);
 }
 
 }  // namespace adb::detail

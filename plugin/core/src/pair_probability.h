@@ -39,6 +39,47 @@ struct TreeConstants {
   int maxDepth;
 };
 
+/// A node ready to be tested against nodes of the other tree: its box in its own frame, and
+/// its box and slab normal seen from the other tree's frame (filled by ChildPairs).
+struct PosedNode {
+  Vec3 c, h;                 // box centre and half extents, own local frame
+  Vec3 cOther, hOther;       // centre and half extents of its box's AABB in the other frame
+  Vec3 slabReach;            // |slab normal| along the other frame's axes: the radius of a box
+                             // of half extents h' along the normal is slabReach . h'
+  const NodeDistribution* d; // slab, cell side and density
+};
+
+/// The up to 2 x 2 child pairs of one expansion, posed lazily: B's children are mapped into
+/// A's frame at once (every pair's first test needs them), an A child is mapped into B's
+/// frame and a slab normal into the other frame only when a pair gets that far. Rejected
+/// pairs cost what they did when each pair mapped its own boxes; surviving ones share the
+/// work.
+class ChildPairs {
+ public:
+  ChildPairs(const AdbTree& a, const std::uint32_t* ca, int countA, const AdbTree& b,
+             const std::uint32_t* cb, int countB, const RelativeFrame& frame);
+  /// True unless A's child i and B's child j are proven apart: by a face axis of either box,
+  /// or by either node's slab (NodeDistribution) against the other's box. Touching counts
+  /// as overlapping (within frame.slack): the test never prunes a pair whose triangles
+  /// could meet.
+  bool overlap(int i, int j);
+  /// overlap(), and for overlapping nodes how deeply their boxes overlap (>= 0: the smallest
+  /// overlap along the six face axes); negative when they are apart.
+  double overlapDepth(int i, int j);
+  /// The posed nodes, complete once overlap(i, j) returned true.
+  const PosedNode& a(int i) const { return m_a[i]; }
+  const PosedNode& b(int j) const { return m_b[j]; }
+
+ private:
+  void mapA(int i);
+  void reachA(int i);
+  void reachB(int j);
+  const RelativeFrame& m_frame;
+  PosedNode m_a[2], m_b[2];
+  bool m_mappedA[2] = {false, false};
+  bool m_reachA[2] = {false, false}, m_reachB[2] = {false, false};
+};
+
 struct PairEstimate {
   bool overlap = false;
   double lower = 0.0;  // Eq. 3: the priority and the acceptance test
@@ -47,21 +88,15 @@ struct PairEstimate {
   int s = 0, sA = 0, sB = 0;
 };
 
-/// True unless node a (tree A) and node b (tree B) are proven apart: by a face axis of
-/// either box, or by either node's slab (NodeDistribution) against the other's box. Touching
-/// counts as overlapping (within frame.slack): the test never prunes a pair whose triangles
-/// could meet.
-bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
-                  std::uint32_t b, const RelativeFrame& frame);
+/// The probability of a pair of overlapping posed nodes at the given depths (overlap is set).
+PairEstimate estimateOverlapping(const PosedNode& a, int depthA, const PosedNode& b, int depthB,
+                                 int maxDepthA, int maxDepthB);
 
-/// nodesOverlap, and for overlapping nodes how deeply their boxes overlap (>= 0: the smallest
-/// overlap along the six face axes); negative when they are apart.
-double overlapDepth(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
-                    std::uint32_t b, const RelativeFrame& frame);
-
-/// Overlap test plus, when they overlap, the probability of the pair at the given depths.
+/// Overlap test plus, when they overlap, the probability of one pair given by index.
 PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t a, int depthA,
                           const TreeConstants& tb, std::uint32_t b, int depthB,
                           const RelativeFrame& frame);
+bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
+                  std::uint32_t b, const RelativeFrame& frame);
 
 }  // namespace adb::detail

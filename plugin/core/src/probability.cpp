@@ -86,26 +86,90 @@ double collisionLowerBound(int s, int sA, int sB, double lb) {
   return estimateCollision(s, sA, sB, lb).lower;
 }
 
+namespace {
+
+// The traversal evaluates Eq. 3 for every overlapping node pair, so it avoids exp, log and
+// division: n! is tabulated as mantissa * 2^exponent (no overflow up to kMaxBins!), and the
+// term ratios multiply by tabulated reciprocals. Both tables are built once (thread-safe
+// static initialisation); a query reads their first few thousand entries.
+struct FactorialTables {
+  std::vector<double> mantissa;    // n! = mantissa[n] * 2^exponent[n], mantissa in [1, 2)
+  std::vector<int> exponent;
+  std::vector<double> reciprocal;  // 1 / n (0 for n = 0, never read)
+  FactorialTables() : mantissa(kMaxBins + 1), exponent(kMaxBins + 1), reciprocal(kMaxBins + 1) {
+    // Accumulated in long double (a 64-bit mantissa on x86): 32768 roundings stay far
+    // below double precision.
+    long double m = 1.0L;
+    int e = 0;
+    for (int n = 0; n <= kMaxBins; ++n) {
+      if (n > 0) {
+        int shift = 0;
+        m = std::frexp(m * n, &shift) * 2.0L;  // back into [1, 2)
+        e += shift - 1;
+        reciprocal[n] = 1.0 / n;
+      }
+      mantissa[n] = static_cast<double>(m);
+      exponent[n] = e;
+    }
+  }
+};
+
+const FactorialTables& factorials() {
+  static const FactorialTables tables;
+  return tables;
+}
+
+// Pr[X = t] = v! (u-v)! w! (u-w)! / (u! t! (v-t)! (w-t)! (u-v-w+t)!), for t0 <= t <= min(v, w).
+// Underflows to 0 where it is below 2^-1022: the tails it feeds are then 1 to rounding.
+double pointProbability(const FactorialTables& f, int u, int v, int w, int t) {
+  const int num[4] = {v, u - v, w, u - w};
+  const int den[5] = {u, t, v - t, w - t, u - v - w + t};
+  double m = 1.0;
+  int e = 0;
+  for (int n : num) {
+    m *= f.mantissa[n];
+    e += f.exponent[n];
+  }
+  double d = 1.0;
+  for (int n : den) {
+    d *= f.mantissa[n];
+    e -= f.exponent[n];
+  }
+  return std::ldexp(m / d, e);
+}
+
+}  // namespace
+
 CollisionEstimate estimateCollision(int s, int sA, int sB, double lb) {
   const Bins b = clampBins(s, sA, sB);
   const int xMax = std::min({b.v, b.w, kMaxCollisionCells});
   if (xMax <= 0) return {};
   lb = std::isnan(lb) ? 0.0 : std::clamp(lb, 0.0, 1.0);
-  std::array<double, kMaxCollisionCells> tail{};
-  if (b.v + b.w - b.u >= xMax) {
-    // At least v + w - u bins must get both colours: every tail up to xMax is 1 (a common
-    // case for dense, deep node pairs; it skips the exp and the sums).
-    tail.fill(1.0);
-  } else {
-    hypergeometricTail(b.u, b.v, b.w, xMax, tail.data());
-  }
-  double best = 0.0;
+  const double miss = 1.0 - lb;
+  // At least t0 = v + w - u bins get both colours: Pr[X >= x] = 1 for x <= t0, and with
+  // (1 - (1 - lb)^x) growing in x the best of those is at x = min(t0, xMax).
+  const int t0 = std::max(0, b.v + b.w - b.u);
   double missAll = 1.0;  // (1 - lb)^x
-  for (int x = 1; x <= xMax; ++x) {
-    missAll *= 1.0 - lb;
-    best = std::max(best, tail[x - 1] * (1.0 - missAll));
+  for (int x = 1; x <= std::min(t0, xMax); ++x) missAll *= miss;
+  double best = 1.0 - missAll;
+  if (t0 >= xMax) return {std::clamp(best, 0.0, 1.0), 1.0};
+  const FactorialTables& f = factorials();
+  double p = pointProbability(f, b.u, b.v, b.w, t0);  // Pr[X = t0]
+  const double upper = t0 == 0 ? std::clamp(1.0 - p, 0.0, 1.0) : 1.0;
+  double below = 0.0;  // Pr[X <= t]
+  for (int t = t0; t < xMax; ++t) {
+    below += p;
+    const double tail = 1.0 - below;  // Pr[X >= t + 1]
+    // Tails only fall as x grows and (1 - (1 - lb)^x) <= 1: no later x can beat `best`.
+    if (tail <= best) break;
+    missAll *= miss;
+    best = std::max(best, tail * (1.0 - missAll));
+    // Pr[X = t+1] / Pr[X = t] = (v - t)(w - t) / ((t + 1)(u - v - w + t + 1)); the second
+    // factor of the denominator is >= 1 because t >= t0.
+    p *= static_cast<double>(b.v - t) * (b.w - t) * f.reciprocal[t + 1] *
+         f.reciprocal[b.u - b.v - b.w + t + 1];
   }
-  return {std::clamp(best, 0.0, 1.0), tail[0]};
+  return {std::clamp(best, 0.0, 1.0), upper};
 }
 
 double cellIntersectionBound(int depthA, int depthB, int maxDepthA, int maxDepthB) {

@@ -1,4 +1,5 @@
-// The collision query: the paper's probability-guided traversal (Fig. 3) and the exact mode.
+// The collision query: the paper's probability-guided traversal (Fig. 3) and the exact mode,
+// run in steps by adb::Traversal.
 //
 //   traverse(A, B):                                  # ADB mode, paper Fig. 3 plus budgets
 //     q = max-heap by probability; k = 0; q.insert(rootA, rootB, 1)
@@ -22,9 +23,14 @@
 // only grow with budget.
 //
 // Exact mode is a depth-first descent over overlapping boxes. Cut by a budget, its stack is
-// estimated by the same model (openPairs(), and the confidence 1 - min(1, U)) and can be
-// resumed later. Contact generation samples hits per contact region (hitsPerRegion): once a
-// region holds its quota, its remaining pairs are skipped at no cost, in either mode.
+// estimated by the same model (openPairs(), and the confidence 1 - min(1, U)); the next step
+// continues from it. Contact generation samples hits per contact region (hitsPerRegion): once
+// a region holds its quota, its remaining pairs are skipped at no cost, in either mode.
+//
+// Each expansion poses the (up to two) children of each node at most once, lazily
+// (pair_probability.h's ChildPairs), and tests the up to four child pairs on those: a child
+// meets two children of the other node, and mapping boxes between frames is most of a pair
+// test's cost.
 #include "adb/core/query.h"
 
 #include <algorithm>
@@ -37,32 +43,12 @@
 #include "pair_probability.h"
 
 namespace adb {
-
-struct QueryScratchAccess {
-  using Entry = OpenPair;
-  static std::vector<Entry>& heap(QueryScratch& s) { return s.m_heap; }
-  static std::vector<Witness>& witnesses(QueryScratch& s) { return s.m_witnesses; }
-  static std::vector<std::uint32_t>& regionHits(QueryScratch& s) { return s.m_regionHits; }
-  // Whether `s` holds an exact query of trees a and b that a budget stopped. The node
-  // counts guard the stack's indices should another tree have taken a freed one's address.
-  static bool resumable(const QueryScratch& s, const AdbTree& a, const AdbTree& b) {
-    return s.m_resumeA == &a && s.m_resumeB == &b && s.m_resumeNodesA == a.nodes().size() &&
-           s.m_resumeNodesB == b.nodes().size();
-  }
-  static bool& resumeHit(QueryScratch& s) { return s.m_resumeHit; }
-  static void markResumable(QueryScratch& s, const AdbTree* a, const AdbTree* b) {
-    s.m_resumeA = a;
-    s.m_resumeB = b;
-    s.m_resumeNodesA = a ? a->nodes().size() : 0;
-    s.m_resumeNodesB = b ? b->nodes().size() : 0;
-  }
-};
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using Entry = QueryScratchAccess::Entry;
+using Entry = OpenPair;
 constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
+constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 
 // The clock is read once this much work has been done since the last read, counting 4 per
 // popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: a short query is not
@@ -84,65 +70,130 @@ bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& h
   return (loX.array() > hiY.array() + gap).any() || (loY.array() > hiX.array() + gap).any();
 }
 
-class Traversal {
- public:
-  Traversal(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
-            const QuerySettings& settings, QueryScratch& scratch)
-      : m_a{&a, a.maxDepth()},
-        m_b{&b, b.maxDepth()},
-        m_frame(detail::RelativeFrame::between(a, poseA, b, poseB)),
-        m_settings(settings),
-        m_heap(QueryScratchAccess::heap(scratch)),
-        m_witnesses(QueryScratchAccess::witnesses(scratch)),
-        m_regionHits(QueryScratchAccess::regionHits(scratch)),
-        m_scratch(scratch),
-        m_start(Clock::now()),
-        m_timed(std::isfinite(settings.budgetMicros)),
-        m_budgeted(m_timed ||
-                   settings.budgetNodePairs != std::numeric_limits<std::uint64_t>::max()),
-        m_resuming(settings.resume && settings.mode == QueryMode::Exact &&
-                   QueryScratchAccess::resumable(scratch, a, b)) {
-    if (!m_resuming) {
-      m_heap.clear();
-      m_witnesses.clear();
-      m_regionHits.clear();
-      QueryScratchAccess::resumeHit(scratch) = false;
-    }
-    QueryScratchAccess::markResumable(scratch, nullptr, nullptr);
+bool isBudgetStop(StopReason r) { return r == StopReason::TimeBudget || r == StopReason::WorkBudget; }
+
+// The traversal inverts rotations by transposing them: a scaled or sheared "rotation" would
+// silently misplace every box, so it is refused at the door.
+constexpr double kOrthonormalTolerance = 1e-6;
+
+void validatePose(const Pose& p, const char* which) {
+  const auto fail = [&](const std::string& why) {
+    throw PoseError(std::string("collide: pose ") + which + " " + why);
+  };
+  if (!p.rotation.allFinite() || !p.translation.allFinite()) fail("has a non-finite entry");
+  const double off = (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
+  if (off > kOrthonormalTolerance) {
+    fail("has a rotation that is not orthonormal (|R^T R - I| = " + std::to_string(off) + ")");
+  }
+}
+
+// The children of a node for the simultaneous descent: a leaf is its own only child.
+int children(const Node& n, std::uint32_t self, std::uint32_t out[2]) {
+  if (n.isLeaf()) {
+    out[0] = self;
+    return 1;
+  }
+  out[0] = n.firstChild();
+  out[1] = n.firstChild() + 1;
+  return 2;
+}
+
+}  // namespace
+
+struct Traversal::Impl {
+  // --- the query, fixed by reset() -------------------------------------------------------
+  detail::TreeConstants a{nullptr, 0}, b{nullptr, 0};
+  detail::RelativeFrame frame;
+  QuerySettings settings;
+  bool budgeted = false;  // a budget may cut the query: exact mode then goes deepest first
+
+  // --- state kept between steps ------------------------------------------------------------
+  std::vector<Entry> heap;  // ADB: max-heap by p; exact: depth-first stack
+  std::vector<Witness> witnesses;
+  std::vector<std::uint32_t> regionHits;  // hits found per contact region
+  QueryResult result;
+  bool started = false;  // the roots have been tested
+  bool finished = false;
+  double upperSum = 0.0;
+  double minUpperSum = 0.0;
+  double bestAccepted = 0.0;  // largest p of the accepted pairs
+  double prunedMass = 0.0;    // sum of E[X] over the pairs pruned for p = 0
+  bool exactHit = false;
+
+  // --- the current step ----------------------------------------------------------------------
+  StepWork work;
+  StepBudget budget;
+  Clock::time_point stepStart;
+  bool timed = false;
+  unsigned workSinceClock = 0;
+  bool firstCheck = true;   // the first check reads the clock: a zero budget stops at once
+  bool progressed = false;  // this step has expanded a pair (every step makes progress)
+
+  void reset(const AdbTree& ta, const Pose& poseA, const AdbTree& tb, const Pose& poseB,
+             const QuerySettings& s) {
+    validate(s);
+    validatePose(poseA, "A");
+    validatePose(poseB, "B");
+    a = {&ta, ta.maxDepth()};
+    b = {&tb, tb.maxDepth()};
+    frame = detail::RelativeFrame::between(ta, poseA, tb, poseB);
+    settings = s;
+    heap.clear();
+    witnesses.clear();
+    regionHits.clear();
+    result = QueryResult{};
+    started = finished = exactHit = false;
+    upperSum = minUpperSum = bestAccepted = prunedMass = 0.0;
+    work = StepWork{};
   }
 
-  QueryResult run() {
-    if (m_settings.mode == QueryMode::Exact) {
+  const QueryResult& step(const StepBudget& stepBudget) {
+    work = StepWork{};
+    if (finished || !a.tree) return result;
+    budget = stepBudget;
+    budgeted = budgeted || stepBudget.nodePairs != kUnlimited || std::isfinite(stepBudget.micros);
+    stepStart = Clock::now();
+    timed = std::isfinite(budget.micros);
+    workSinceClock = 0;
+    firstCheck = true;
+    progressed = false;
+    if (settings.mode == QueryMode::Exact) {
       runExact();
-      if (m_result.stop == StopReason::TimeBudget || m_result.stop == StopReason::WorkBudget) {
-        QueryScratchAccess::markResumable(m_scratch, m_a.tree, m_b.tree);
-      }
     } else {
       runAdb();
     }
-    m_result.witnessCount = static_cast<std::uint32_t>(m_witnesses.size());
-    m_result.seconds = std::chrono::duration<double>(Clock::now() - m_start).count();
-    return m_result;
+    work.seconds = std::chrono::duration<double>(Clock::now() - stepStart).count();
+    result.nodePairs += work.nodePairs;
+    result.triangleTests += work.triangleTests;
+    result.seconds += work.seconds;
+    result.witnessCount = static_cast<std::uint32_t>(witnesses.size());
+    finished = !isBudgetStop(result.stop);
+    return result;
   }
 
- private:
   // --- budgets -------------------------------------------------------------------------
-  // Checked before a pair is expanded (up to 4 evaluations), so a pair is never
-  // half-expanded and nodePairs never exceeds max(1, budgetNodePairs): the roots' own test
-  // is always made.
+  // Checked before a pair is expanded (up to 4 evaluations), so a pair is never half-expanded.
+  // The first expansion of a step is free unless the budget is zero: every step with a
+  // non-zero budget makes progress, so a caller looping until done() cannot livelock; a
+  // first step's roots test is its progress (nodePairs <= max(1, budget) for collide()).
   bool budgetLeft() {
-    if (m_result.nodePairs + 4 > m_settings.budgetNodePairs) {
-      m_result.stop = StopReason::WorkBudget;
+    const bool free = !progressed && budget.nodePairs > 0 && budget.micros > 0.0 && work.nodePairs == 0;
+    if (free) {
+      progressed = true;
+      return true;
+    }
+    if (work.nodePairs + kNodePairsPerExpansion > budget.nodePairs) {
+      result.stop = StopReason::WorkBudget;
       return false;
     }
-    if (!m_timed) return true;
-    m_workSinceClock += 4;
-    if (m_workSinceClock >= kClockInterval || m_firstCheck) {
-      m_workSinceClock = 0;
-      m_firstCheck = false;
-      const double us = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
-      if (us >= m_settings.budgetMicros) {
-        m_result.stop = StopReason::TimeBudget;
+    if (!timed) return true;
+    workSinceClock += 4;
+    if (workSinceClock >= kClockInterval || firstCheck) {
+      workSinceClock = 0;
+      firstCheck = false;
+      const double us = std::chrono::duration<double, std::micro>(Clock::now() - stepStart).count();
+      if (us >= budget.micros) {
+        result.stop = StopReason::TimeBudget;
         return false;
       }
     }
@@ -151,10 +202,10 @@ class Traversal {
 
   // --- witnesses -----------------------------------------------------------------------
   void addWitness(const Witness& w) {
-    if (m_witnesses.size() < m_settings.maxWitnesses) {
-      m_witnesses.push_back(w);
+    if (witnesses.size() < settings.maxWitnesses) {
+      witnesses.push_back(w);
     } else {
-      ++m_result.witnessesDropped;
+      ++result.witnessesDropped;
     }
   }
 
@@ -163,25 +214,25 @@ class Traversal {
   // is the first on its path to reach regionDepth.
   std::uint32_t childRegion(std::uint32_t parent, int da, int db) {
     if (parent != kNoRegion) return parent;
-    if (m_settings.hitsPerRegion == 0 || da + db < m_settings.regionDepth) return kNoRegion;
-    m_regionHits.push_back(0);
-    return static_cast<std::uint32_t>(m_regionHits.size() - 1);
+    if (settings.hitsPerRegion == 0 || da + db < settings.regionDepth) return kNoRegion;
+    regionHits.push_back(0);
+    return static_cast<std::uint32_t>(regionHits.size() - 1);
   }
 
   // A region with its hits found: the rest of it is skipped.
   bool regionFull(std::uint32_t region) const {
-    return region != kNoRegion && m_regionHits[region] >= m_settings.hitsPerRegion;
+    return region != kNoRegion && regionHits[region] >= settings.hitsPerRegion;
   }
 
   // Tests the triangle pairs of two leaves (all, or until their region is full); records
   // hits. Returns true on a hit.
   bool testLeaves(std::uint32_t ia, std::uint32_t ib, std::uint32_t region) {
-    const Node& na = m_a.tree->nodes()[ia];
-    const Node& nb = m_b.tree->nodes()[ib];
-    const auto& va = m_a.tree->localVertices();
-    const auto& vb = m_b.tree->localVertices();
-    const auto& ta = m_a.tree->triangles();
-    const auto& tb = m_b.tree->triangles();
+    const Node& na = a.tree->nodes()[ia];
+    const Node& nb = b.tree->nodes()[ib];
+    const auto& va = a.tree->localVertices();
+    const auto& vb = b.tree->localVertices();
+    const auto& ta = a.tree->triangles();
+    const auto& tb = b.tree->triangles();
     // B's triangles mapped into A's frame once per leaf pair (at most 15 x 3 points), and
     // the boxes of both leaves' triangles in that frame (Eigen leaves them uninitialised:
     // nothing is written for the slots a leaf does not use).
@@ -190,7 +241,7 @@ class Traversal {
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
       for (int k = 0; k < 3; ++k) {
-        mapped[j][k] = m_frame.bToA(vb[tb[nb.firstTriangle() + j][k]]);
+        mapped[j][k] = frame.bToA(vb[tb[nb.firstTriangle() + j][k]]);
       }
       loB[j] = mapped[j][0].cwiseMin(mapped[j][1]).cwiseMin(mapped[j][2]);
       hiB[j] = mapped[j][0].cwiseMax(mapped[j][1]).cwiseMax(mapped[j][2]);
@@ -213,8 +264,8 @@ class Traversal {
       const Triangle& t = ta[na.firstTriangle() + i];
       for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
         if (boxesApart(loA[i], hiA[i], loB[j], hiB[j], gap)) continue;
-        ++m_result.triangleTests;
-        ++m_workSinceClock;
+        ++work.triangleTests;
+        ++workSinceClock;
         if (!trianglesIntersect(va[t[0]], va[t[1]], va[t[2]], mapped[j][0], mapped[j][1],
                                 mapped[j][2])) {
           continue;
@@ -227,8 +278,8 @@ class Traversal {
         w.triangleB = nb.firstTriangle() + j;
         w.probability = 1.0f;
         addWitness(w);
-        if (m_settings.stopAtFirstHit) return true;
-        if (region != kNoRegion && ++m_regionHits[region] >= m_settings.hitsPerRegion) {
+        if (settings.stopAtFirstHit) return true;
+        if (region != kNoRegion && ++regionHits[region] >= settings.hitsPerRegion) {
           return true;
         }
       }
@@ -236,185 +287,200 @@ class Traversal {
     return hit;
   }
 
-  // The children of a node for the simultaneous descent: a leaf is its own only child.
-  static int children(const Node& n, std::uint32_t self, std::uint32_t out[2]) {
-    if (n.isLeaf()) {
-      out[0] = self;
-      return 1;
-    }
-    out[0] = n.firstChild();
-    out[1] = n.firstChild() + 1;
-    return 2;
+  // The children of the nodes of a popped pair (a leaf is its own only child) and their depths.
+  struct Expansion {
+    std::uint32_t ca[2], cb[2];
+    int countA, countB;
+    int depthA, depthB;
+  };
+
+  Expansion expand(const Entry& e) const {
+    const Node& na = a.tree->nodes()[e.a];
+    const Node& nb = b.tree->nodes()[e.b];
+    Expansion x;
+    x.countA = children(na, e.a, x.ca);
+    x.countB = children(nb, e.b, x.cb);
+    x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
+    x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+    return x;
+  }
+
+  detail::ChildPairs pairsOf(const Expansion& x) const {
+    return detail::ChildPairs(*a.tree, x.ca, x.countA, *b.tree, x.cb, x.countB, frame);
+  }
+
+  bool bothLeaves(const Entry& e) const {
+    return a.tree->nodes()[e.a].isLeaf() && b.tree->nodes()[e.b].isLeaf();
   }
 
   // --- exact mode: depth-first over overlapping boxes ----------------------------------
   void runExact() {
-    if (!m_resuming) {
-      ++m_result.nodePairs;
-      if (!detail::nodesOverlap(m_a, 0, m_b, 0, m_frame)) {
+    if (!started) {
+      started = true;
+      ++work.nodePairs;
+      if (!detail::nodesOverlap(a, 0, b, 0, frame)) {
         finish(false, 1.0, StopReason::Completed);
         return;
       }
-      m_heap.push_back(Entry{1.0f, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
+      heap.push_back(Entry{1.0f, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
     }
-    bool& hit = QueryScratchAccess::resumeHit(m_scratch);
-    while (!m_heap.empty()) {
-      if (regionFull(m_heap.back().region)) {  // skipping costs no budget
-        m_heap.pop_back();
+    while (!heap.empty()) {
+      if (regionFull(heap.back().region)) {  // skipping costs no budget
+        heap.pop_back();
         continue;
       }
       if (!budgetLeft()) {
         // The stack is what is left unexplored: estimated by the model, it gives the cut
         // query its confidence and the caller its plausible contacts (openPairs()).
         const double doubt = estimateFrontier();
-        finish(hit, hit ? 1.0 : 1.0 - std::min(1.0, doubt), m_result.stop);
+        finish(exactHit, exactHit ? 1.0 : 1.0 - std::min(1.0, doubt), result.stop);
         return;
       }
-      const Entry e = m_heap.back();
-      m_heap.pop_back();
-      const Node& na = m_a.tree->nodes()[e.a];
-      const Node& nb = m_b.tree->nodes()[e.b];
-      if (na.isLeaf() && nb.isLeaf()) {
+      const Entry e = heap.back();
+      heap.pop_back();
+      if (bothLeaves(e)) {
         if (testLeaves(e.a, e.b, e.region)) {
-          hit = true;
-          if (m_settings.stopAtFirstHit) {
-            m_heap.clear();  // decided: nothing is left open
+          exactHit = true;
+          if (settings.stopAtFirstHit) {
+            heap.clear();  // decided: nothing is left open
             finish(true, 1.0, StopReason::ExactHit);
             return;
           }
         }
         continue;
       }
-      std::uint32_t ca[2], cb[2];
-      const int na2 = children(na, e.a, ca), nb2 = children(nb, e.b, cb);
-      const int da = na.isLeaf() ? e.depthA : e.depthA + 1;
-      const int db = nb.isLeaf() ? e.depthB : e.depthB + 1;
-      // Under a budget the overlapping children go on the stack shallowest first, so that
-      // the deepest overlap is explored first: a budget that cuts the descent has then seen
-      // the deepest contacts, the ones that keep bodies apart. A descent that cannot be cut
-      // keeps the trees' order, which samples the same triangle pairs step after step
-      // (deepest first, near-equal depths swap with every small motion, and the contacts of
-      // a resting stack jumped: its top boxes drifted up to 40 % further).
-      Entry kids[4];
-      float depth[4];
-      int count = 0;
-      for (int i = 0; i < na2; ++i) {
-        for (int j = 0; j < nb2; ++j) {
-          ++m_result.nodePairs;
-          const double d = m_budgeted ? detail::overlapDepth(m_a, ca[i], m_b, cb[j], m_frame)
-                                      : (detail::nodesOverlap(m_a, ca[i], m_b, cb[j], m_frame)
-                                             ? 0.0
-                                             : -1.0);
-          if (d < 0.0) continue;
-          int k = count++;
-          for (; k > 0 && depth[k - 1] > static_cast<float>(d); --k) {
-            kids[k] = kids[k - 1];
-            depth[k] = depth[k - 1];
-          }
-          kids[k] = Entry{1.0f, 1.0f, ca[i], cb[j], kNoRegion, static_cast<std::uint16_t>(da),
-                          static_cast<std::uint16_t>(db)};
-          depth[k] = static_cast<float>(d);
+      pushOverlappingChildren(e);
+    }
+    finish(exactHit, 1.0, StopReason::Completed);
+  }
+
+  // Exact mode's expansion. Under a budget the overlapping children go on the stack shallowest
+  // first, so that the deepest overlap is explored first: a budget that cuts the descent has
+  // then seen the deepest contacts, the ones that keep bodies apart. A descent that cannot be
+  // cut keeps the trees' order, which samples the same triangle pairs step after step (deepest
+  // first, near-equal depths swap with every small motion, and the contacts of a resting
+  // stack jumped: its top boxes drifted up to 40 % further).
+  void pushOverlappingChildren(const Entry& e) {
+    const Expansion x = expand(e);
+    detail::ChildPairs pairs = pairsOf(x);
+    Entry kids[4];
+    float depth[4];
+    int count = 0;
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        ++work.nodePairs;
+        const double d = budgeted ? pairs.overlapDepth(i, j) : (pairs.overlap(i, j) ? 0.0 : -1.0);
+        if (d < 0.0) continue;
+        int k = count++;
+        for (; k > 0 && depth[k - 1] > static_cast<float>(d); --k) {
+          kids[k] = kids[k - 1];
+          depth[k] = depth[k - 1];
         }
-      }
-      for (int k = 0; k < count; ++k) {
-        kids[k].region = childRegion(e.region, da, db);
-        m_heap.push_back(kids[k]);
+        kids[k] = Entry{1.0f, 1.0f, x.ca[i], x.cb[j], kNoRegion,
+                        static_cast<std::uint16_t>(x.depthA), static_cast<std::uint16_t>(x.depthB)};
+        depth[k] = static_cast<float>(d);
       }
     }
-    finish(hit, 1.0, StopReason::Completed);
+    for (int k = 0; k < count; ++k) {
+      kids[k].region = childRegion(e.region, x.depthA, x.depthB);
+      heap.push_back(kids[k]);
+    }
   }
 
   // --- ADB mode: the paper's priority traversal ----------------------------------------
-  void push(const detail::PairEstimate& est, std::uint32_t a, std::uint32_t b,
+  void push(const detail::PairEstimate& est, std::uint32_t ia, std::uint32_t ib,
             std::uint32_t region, int da, int db) {
-    const Entry e{static_cast<float>(est.lower), static_cast<float>(doubtOf(est)), a, b, region,
+    const Entry e{static_cast<float>(est.lower), static_cast<float>(doubtOf(est)), ia, ib, region,
                   static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)};
-    m_heap.push_back(e);
-    std::push_heap(m_heap.begin(), m_heap.end(), heapLess);
-    m_upperSum += e.upper;  // the stored float, the same value the pop subtracts
+    heap.push_back(e);
+    std::push_heap(heap.begin(), heap.end(), heapLess);
+    upperSum += e.upper;  // the stored float, the same value the pop subtracts
   }
 
   void runAdb() {
-    ++m_result.nodePairs;
-    const detail::PairEstimate root = detail::estimatePair(m_a, 0, 0, m_b, 0, 0, m_frame);
-    if (!root.overlap) {
-      finish(false, 1.0, StopReason::Completed);
-      return;
-    }
-    // The paper inserts the roots with probability 1: LB is 0 at depth 0, so Eq. 3 is 0.
-    m_heap.push_back(
-        Entry{1.0f, static_cast<float>(root.upper), 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
-    m_upperSum = static_cast<float>(root.upper);
-    m_minUpperSum = m_upperSum;
-    while (!m_heap.empty()) {
-      if (!budgetLeft()) {
-        finishUncertain(m_result.stop);
+    if (!started) {
+      started = true;
+      ++work.nodePairs;
+      const detail::PairEstimate root = detail::estimatePair(a, 0, 0, b, 0, 0, frame);
+      if (!root.overlap) {
+        finish(false, 1.0, StopReason::Completed);
         return;
       }
-      std::pop_heap(m_heap.begin(), m_heap.end(), heapLess);
-      const Entry e = m_heap.back();
-      m_heap.pop_back();
-      m_upperSum -= e.upper;
+      // The paper inserts the roots with probability 1: LB is 0 at depth 0, so Eq. 3 is 0.
+      heap.push_back(
+          Entry{1.0f, static_cast<float>(root.upper), 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
+      upperSum = static_cast<float>(root.upper);
+      minUpperSum = upperSum;
+    }
+    while (!heap.empty()) {
+      if (!budgetLeft()) {
+        finishUncertain(result.stop);
+        return;
+      }
+      std::pop_heap(heap.begin(), heap.end(), heapLess);
+      const Entry e = heap.back();
+      heap.pop_back();
+      upperSum -= e.upper;
       if (!regionFull(e.region) && expandAdb(e)) return;
       // Rounding must not make an empty queue look doubtful, nor a sum negative.
-      m_upperSum = m_heap.empty() ? 0.0 : std::max(0.0, m_upperSum);
-      m_minUpperSum = std::min(m_minUpperSum, m_upperSum + m_prunedMass);
+      upperSum = heap.empty() ? 0.0 : std::max(0.0, upperSum);
+      minUpperSum = std::min(minUpperSum, upperSum + prunedMass);
     }
     finishUncertain(StopReason::Completed);
   }
 
   // Expands one popped pair. Returns true when the query is decided.
   bool expandAdb(const Entry& e) {
-    const Node& na = m_a.tree->nodes()[e.a];
-    const Node& nb = m_b.tree->nodes()[e.b];
-    if (na.isLeaf() && nb.isLeaf()) {
+    if (bothLeaves(e)) {
       if (testLeaves(e.a, e.b, e.region)) {
-        m_exactHit = true;
-        if (m_settings.stopAtFirstHit) {
-          dropFullRegions();
-          std::make_heap(m_heap.begin(), m_heap.end(), heapLess);
+        exactHit = true;
+        if (settings.stopAtFirstHit) {
+          dropFullRegionsFromHeap();
           finish(true, 1.0, StopReason::ExactHit);
           return true;
         }
       }
       return false;
     }
-    std::uint32_t ca[2], cb[2];
-    const int na2 = children(na, e.a, ca), nb2 = children(nb, e.b, cb);
-    const int da = na.isLeaf() ? e.depthA : e.depthA + 1;
-    const int db = nb.isLeaf() ? e.depthB : e.depthB + 1;
-    for (int i = 0; i < na2; ++i) {
-      for (int j = 0; j < nb2; ++j) {
-        ++m_result.nodePairs;
-        const detail::PairEstimate est = detail::estimatePair(m_a, ca[i], da, m_b, cb[j], db,
-                                                              m_frame);
-        if (!est.overlap) continue;
-        if (!(est.lower > 0.0) && m_settings.pruneImprobable) {  // paper: only p > 0
-          m_prunedMass += est.expected;
+    const Expansion x = expand(e);
+    detail::ChildPairs pairs = pairsOf(x);
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        ++work.nodePairs;
+        if (!pairs.overlap(i, j)) continue;
+        const detail::PairEstimate est = detail::estimateOverlapping(
+            pairs.a(i), x.depthA, pairs.b(j), x.depthB, a.maxDepth, b.maxDepth);
+        if (!(est.lower > 0.0) && settings.pruneImprobable) {  // paper: only p > 0
+          prunedMass += est.expected;
           continue;
         }
-        const bool leaves = m_a.tree->nodes()[ca[i]].isLeaf() && m_b.tree->nodes()[cb[j]].isLeaf();
-        if (!leaves && est.lower > m_settings.pMin) {
-          ++m_result.collisionPairs;
-          m_bestAccepted = std::max(m_bestAccepted, est.lower);
-          if (m_settings.nodeWitnesses) {
-            Witness w;
-            w.nodeA = ca[i];
-            w.nodeB = cb[j];
-            w.probability = static_cast<float>(est.lower);
-            addWitness(w);
-          }
-          if (m_result.collisionPairs >= static_cast<std::uint32_t>(m_settings.kMin)) {
-            dropFullRegions();
-            std::make_heap(m_heap.begin(), m_heap.end(), heapLess);
-            finish(true, m_exactHit ? 1.0 : m_bestAccepted, StopReason::QualityReached);
-            return true;
-          }
+        const bool leaves =
+            a.tree->nodes()[x.ca[i]].isLeaf() && b.tree->nodes()[x.cb[j]].isLeaf();
+        if (!leaves && est.lower > settings.pMin && accept(x.ca[i], x.cb[j], est.lower)) {
+          return true;
         }
-        push(est, ca[i], cb[j], childRegion(e.region, da, db), da, db);
+        push(est, x.ca[i], x.cb[j], childRegion(e.region, x.depthA, x.depthB), x.depthA,
+             x.depthB);
       }
     }
     return false;
+  }
+
+  // A collision pair (p > p_min). Returns true when it is the k_min-th: the query is decided.
+  bool accept(std::uint32_t ia, std::uint32_t ib, double p) {
+    ++result.collisionPairs;
+    bestAccepted = std::max(bestAccepted, p);
+    if (settings.nodeWitnesses) {
+      Witness w;
+      w.nodeA = ia;
+      w.nodeB = ib;
+      w.probability = static_cast<float>(p);
+      addWitness(w);
+    }
+    if (result.collisionPairs < static_cast<std::uint32_t>(settings.kMin)) return false;
+    dropFullRegionsFromHeap();
+    finish(true, exactHit ? 1.0 : bestAccepted, StopReason::QualityReached);
+    return true;
   }
 
   // The answer when neither k_min nor an exact hit decided. The paper answers "no collision"
@@ -423,23 +489,33 @@ class Traversal {
   // Accepted pairs below k_min are evidence the paper does not act on: they are not
   // witnesses of a "no".
   void finishUncertain(StopReason why) {
-    dropFullRegions();
-    std::make_heap(m_heap.begin(), m_heap.end(), heapLess);
-    if (m_exactHit) {
+    dropFullRegionsFromHeap();
+    if (exactHit) {
       finish(true, 1.0, why);
       return;
     }
-    m_witnesses.clear();
-    m_result.witnessesDropped = 0;
-    finish(false, 1.0 - std::min(1.0, m_minUpperSum), why);
+    witnesses.clear();
+    result.witnessesDropped = 0;
+    finish(false, 1.0 - std::min(1.0, minUpperSum), why);
   }
 
   // Pairs of regions whose hits were found are resolved, not open: a cut query leaves only
   // the others in openPairs(). The order of the rest is kept (exact mode resumes from it).
-  void dropFullRegions() {
-    if (m_regionHits.empty()) return;
+  // Returns whether any was dropped.
+  bool dropFullRegions() {
+    if (regionHits.empty()) return false;
     const auto full = [this](const Entry& e) { return regionFull(e.region); };
-    m_heap.erase(std::remove_if(m_heap.begin(), m_heap.end(), full), m_heap.end());
+    const auto end = std::remove_if(heap.begin(), heap.end(), full);
+    const bool dropped = end != heap.end();
+    heap.erase(end, heap.end());
+    return dropped;
+  }
+
+  // ADB mode: drops resolved regions and keeps the queue a heap. Only rebuilt where something
+  // was dropped: make_heap may reorder equal priorities, and a query run in steps must pop in
+  // the same order as one run at once.
+  void dropFullRegionsFromHeap() {
+    if (dropFullRegions()) std::make_heap(heap.begin(), heap.end(), heapLess);
   }
 
   // Exact mode cut by a budget: the model's estimates for the pairs left on the stack (at
@@ -448,9 +524,9 @@ class Traversal {
   double estimateFrontier() {
     dropFullRegions();
     double doubt = 0.0;
-    for (Entry& e : m_heap) {
+    for (Entry& e : heap) {
       const detail::PairEstimate est =
-          detail::estimatePair(m_a, e.a, e.depthA, m_b, e.b, e.depthB, m_frame);
+          detail::estimatePair(a, e.a, e.depthA, b, e.b, e.depthB, frame);
       e.p = static_cast<float>(est.lower);
       e.upper = static_cast<float>(doubtOf(est));
       doubt += e.upper;
@@ -459,33 +535,41 @@ class Traversal {
   }
 
   void finish(bool collides, double confidence, StopReason why) {
-    m_result.collides = collides;
-    m_result.confidence = std::clamp(confidence, 0.0, 1.0);
-    m_result.stop = why;
+    result.collides = collides;
+    result.confidence = std::clamp(confidence, 0.0, 1.0);
+    result.stop = why;
   }
-
-  detail::TreeConstants m_a, m_b;
-  detail::RelativeFrame m_frame;
-  const QuerySettings& m_settings;
-  std::vector<Entry>& m_heap;
-  std::vector<Witness>& m_witnesses;
-  std::vector<std::uint32_t>& m_regionHits;
-  QueryScratch& m_scratch;
-  Clock::time_point m_start;
-  bool m_timed;
-  bool m_budgeted;  // a budget may cut the query
-  bool m_resuming;
-  unsigned m_workSinceClock = 0;
-  bool m_firstCheck = true;  // the first check reads the clock: a zero budget stops at once
-  QueryResult m_result;
-  double m_upperSum = 0.0;
-  double m_minUpperSum = 0.0;
-  double m_bestAccepted = 0.0;  // largest p of the accepted pairs
-  double m_prunedMass = 0.0;    // sum of E[X] over the pairs pruned for p = 0
-  bool m_exactHit = false;
 };
 
-}  // namespace
+Traversal::Traversal() : m_impl(std::make_unique<Impl>()) {}
+
+Traversal::Traversal(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
+                     const QuerySettings& settings)
+    : Traversal() {
+  reset(a, poseA, b, poseB, settings);
+}
+
+Traversal::~Traversal() = default;
+Traversal::Traversal(Traversal&&) noexcept = default;
+Traversal& Traversal::operator=(Traversal&&) noexcept = default;
+
+void Traversal::reset(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
+                      const QuerySettings& settings) {
+  m_impl->budgeted = false;
+  m_impl->reset(a, poseA, b, poseB, settings);
+}
+
+const QueryResult& Traversal::step(const StepBudget& budget) { return m_impl->step(budget); }
+bool Traversal::done() const { return m_impl->finished; }
+const QueryResult& Traversal::result() const { return m_impl->result; }
+const StepWork& Traversal::lastStep() const { return m_impl->work; }
+const std::vector<OpenPair>& Traversal::openPairs() const { return m_impl->heap; }
+const std::vector<Witness>& Traversal::witnesses() const { return m_impl->witnesses; }
+
+std::size_t Traversal::capacityBytes() const {
+  return m_impl->heap.capacity() * sizeof(Entry) + m_impl->witnesses.capacity() * sizeof(Witness) +
+         m_impl->regionHits.capacity() * sizeof(std::uint32_t);
+}
 
 const char* toString(StopReason r) {
   switch (r) {
@@ -496,11 +580,6 @@ const char* toString(StopReason r) {
     case StopReason::WorkBudget: return "work budget";
   }
   return "unknown";
-}
-
-std::size_t QueryScratch::capacityBytes() const {
-  return m_heap.capacity() * sizeof(Entry) + m_witnesses.capacity() * sizeof(Witness) +
-         m_regionHits.capacity() * sizeof(std::uint32_t);
 }
 
 void validate(const QuerySettings& s) {
@@ -522,31 +601,11 @@ void validate(const QuerySettings& s) {
   }
 }
 
-namespace {
-
-// The traversal inverts rotations by transposing them: a scaled or sheared "rotation" would
-// silently misplace every box, so it is refused at the door.
-constexpr double kOrthonormalTolerance = 1e-6;
-
-void validatePose(const Pose& p, const char* which) {
-  const auto fail = [&](const std::string& why) {
-    throw PoseError(std::string("collide: pose ") + which + " " + why);
-  };
-  if (!p.rotation.allFinite() || !p.translation.allFinite()) fail("has a non-finite entry");
-  const double off = (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
-  if (off > kOrthonormalTolerance) {
-    fail("has a rotation that is not orthonormal (|R^T R - I| = " + std::to_string(off) + ")");
-  }
-}
-
-}  // namespace
-
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch) {
-  validate(settings);
-  validatePose(poseA, "A");
-  validatePose(poseB, "B");
-  return Traversal(a, poseA, b, poseB, settings, scratch).run();
+  Traversal& t = scratch.m_traversal;
+  t.reset(a, poseA, b, poseB, settings);
+  return t.step(StepBudget{settings.budgetNodePairs, settings.budgetMicros});
 }
 
 }  // namespace adb

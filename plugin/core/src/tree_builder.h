@@ -10,9 +10,9 @@ namespace adb {
 
 /// Grants the build stages write access to AdbTree's arrays.
 struct TreeBuilderAccess {
-  static std::vector<Node>& nodes(AdbTree& t) { return t.m_nodes; }
+  static NodeArray<Node>& nodes(AdbTree& t) { return t.m_nodes; }
   static std::vector<NodeSurface>& surfaces(AdbTree& t) { return t.m_surfaces; }
-  static std::vector<NodeDistribution>& distributions(AdbTree& t) { return t.m_distributions; }
+  static NodeArray<NodeDistribution>& distributions(AdbTree& t) { return t.m_distributions; }
   static std::vector<Vec3>& vertices(AdbTree& t) { return t.m_vertices; }
   static std::vector<Triangle>& triangles(AdbTree& t) { return t.m_triangles; }
   static std::vector<std::uint32_t>& meshTriangle(AdbTree& t) { return t.m_meshTriangle; }

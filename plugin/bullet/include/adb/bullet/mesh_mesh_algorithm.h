@@ -42,25 +42,28 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
                         btManifoldResult* result) override;
 
   // --- used by the scheduler -------------------------------------------------------------
-  /// Queries the deferred pair with `settings`; the evidence stays in this pair's scratch.
-  QueryResult query(const detail::DeferredPair& pair, const QuerySettings& settings);
+  /// Starts the deferred pair's query with `settings` (or, with `resume`, continues the one
+  /// a budget cut) and runs it within `budget`; the evidence stays in this pair's traversal.
+  const QueryResult& query(const detail::DeferredPair& pair, const QuerySettings& settings,
+                           const StepBudget& budget, bool resume);
+  /// The work of the last call to query().
+  const StepWork& lastStep() const { return m_traversal.lastStep(); }
   /// Writes the contacts of the last query into the pair's manifold.
   ContactCount writeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
   /// Node pairs the last query that finished needed: the next step's first grant.
   std::uint64_t needed() const { return m_needed; }
   /// The node pairs the last query left unresolved (empty when it completed).
-  const std::vector<OpenPair>& openPairs() const { return m_scratch.openPairs(); }
+  const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
 
  private:
   ContactCount addContacts(const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, btManifoldResult& result,
                            const FrameSettings& settings);
 
-  QueryScratch m_scratch;  // grows to this pair's largest query, then stays
+  Traversal m_traversal;  // grows to this pair's largest query, then stays
   StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
   detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
   std::uint64_t m_needed = 0;
-  std::uint64_t m_used = 0;  // node pairs of this step's queries so far
 };
 
 /// Bytes a dispatcher's algorithm pool must hold per element for adb's algorithms: pass it

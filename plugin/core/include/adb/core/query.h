@@ -3,12 +3,17 @@
 // mode that descends to triangle pairs.
 //
 // A query is a const function of two built trees: any number of threads may query the same
-// trees at once, each with its own QueryScratch. After the scratch has grown to a query's
-// size, repeating queries of that size allocates nothing.
+// trees at once, each with its own QueryScratch or Traversal. After either has grown to a
+// query's size, repeating queries of that size allocates nothing.
+//
+// collide() runs one query to its end or its budget. A Traversal runs the same query in
+// steps, keeping its frontier between them: a caller that shares one budget across many
+// pairs (a physics step) refines the least certain pair without redoing any work.
 #pragma once
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -67,12 +72,6 @@ struct QuerySettings {
   /// region already holds a hit.
   std::uint32_t hitsPerRegion = 0;
   int regionDepth = 8;
-  /// Exact mode: continue the last query of this scratch where a budget stopped it, with
-  /// this call's budgets as the additional allowance, instead of starting again. The trees
-  /// must be the same, still alive objects (other trees start afresh; a scratch does not own
-  /// them) and the poses and other settings the same as before: the caller's business.
-  /// Witnesses accumulate; the result's counters are this call's work.
-  bool resume = false;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
@@ -112,29 +111,85 @@ struct OpenPair {
   static constexpr std::uint32_t kNoRegion = 0xFFFFFFFFu;
 };
 
-/// Reusable working memory of queries: one per thread.
-class QueryScratch {
+/// Node pairs one expansion evaluates at most (both nodes' two children): a step's unit of
+/// progress.
+inline constexpr std::uint64_t kNodePairsPerExpansion = 4;
+
+/// What one Traversal::step may spend. A step with work left always makes progress unless
+/// its budget is zero: the first step tests the roots, a later one expands at least one
+/// pair (up to kNodePairsPerExpansion node pairs, or one leaf pair's triangle tests)
+/// whatever its budget.
+struct StepBudget {
+  std::uint64_t nodePairs = std::numeric_limits<std::uint64_t>::max();
+  double micros = std::numeric_limits<double>::infinity();
+};
+
+/// The work of the last Traversal::step (the result's counters are the whole query's).
+struct StepWork {
+  std::uint64_t nodePairs = 0;
+  std::uint64_t triangleTests = 0;
+  double seconds = 0.0;
+};
+
+/// One query between two posed trees, run in steps: built (or reset) from two trees, two
+/// poses and the settings, then step(budget) as often as wanted. Between steps the frontier
+/// is kept and can be inspected (openPairs()), so each step continues where the last one
+/// stopped. The trees must outlive the traversal's use of them (it keeps references, not
+/// copies). reset() reuses the memory of earlier queries: steady-state queries do not
+/// allocate. Not thread-safe itself; use one per thread (trees may be shared).
+class Traversal {
  public:
-  /// The witnesses of the last query that used this scratch.
-  const std::vector<Witness>& witnesses() const { return m_witnesses; }
-  /// The node pairs the last query left unresolved, with the model's estimates, empty when
-  /// it completed. ADB mode: its queue (heap order, not sorted). Exact mode: the depth-first
-  /// stack a budget cut, estimated when it stopped. Pairs of a contact region whose hits
-  /// were found are not in it. Where a budget cut a query, these are the plausible contacts.
-  const std::vector<OpenPair>& openPairs() const { return m_heap; }
+  Traversal();
+  /// reset() at once.
+  Traversal(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
+            const QuerySettings& settings);
+  ~Traversal();
+  Traversal(Traversal&&) noexcept;
+  Traversal& operator=(Traversal&&) noexcept;
+
+  /// Starts a new query. Throws SettingsError for invalid settings and PoseError for a bad
+  /// pose (see collide()); the budgets of `settings` are not used here (step() takes them).
+  void reset(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
+             const QuerySettings& settings);
+  /// Runs until the query is decided or completes, or this step's budget is spent, and
+  /// returns the result so far. Calling it after done() returns the same result.
+  const QueryResult& step(const StepBudget& budget = {});
+
+  /// Whether the query is decided or complete: further steps do nothing.
+  bool done() const;
+  /// The answer so far; counters and seconds cover every step since reset().
+  const QueryResult& result() const;
+  const StepWork& lastStep() const;
+  /// The node pairs left unresolved, with the model's estimates, empty when the query is
+  /// done. ADB mode: its queue (heap order, not sorted). Exact mode: the depth-first stack,
+  /// estimated when a step stopped. Pairs of a contact region whose hits were found are not
+  /// in it. Where a budget cut a query, these are the plausible contacts.
+  const std::vector<OpenPair>& openPairs() const;
+  /// Node pairs accepted on probability and intersecting triangle pairs found so far
+  /// (cleared when the answer is "no collision").
+  const std::vector<Witness>& witnesses() const;
   /// Bytes currently reserved (grows to the largest query seen, never shrinks).
   std::size_t capacityBytes() const;
 
  private:
-  friend struct QueryScratchAccess;
-  std::vector<OpenPair> m_heap;
-  std::vector<Witness> m_witnesses;
-  std::vector<std::uint32_t> m_regionHits;  // hits found per contact region
-  // What QuerySettings::resume continues: set when an exact query stopped on a budget.
-  const AdbTree* m_resumeA = nullptr;
-  const AdbTree* m_resumeB = nullptr;
-  std::size_t m_resumeNodesA = 0, m_resumeNodesB = 0;
-  bool m_resumeHit = false;  // that query had found an intersecting triangle pair
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+/// Reusable working memory of collide(): one per thread.
+class QueryScratch {
+ public:
+  /// The witnesses of the last query that used this scratch.
+  const std::vector<Witness>& witnesses() const { return m_traversal.witnesses(); }
+  /// The node pairs the last query left unresolved (Traversal::openPairs()).
+  const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
+  /// Bytes currently reserved (grows to the largest query seen, never shrinks).
+  std::size_t capacityBytes() const { return m_traversal.capacityBytes(); }
+
+ private:
+  friend QueryResult collide(const AdbTree&, const Pose&, const AdbTree&, const Pose&,
+                             const QuerySettings&, QueryScratch&);
+  Traversal m_traversal;
 };
 
 /// Thrown for a pose with a non-finite entry or a rotation that is not orthonormal.

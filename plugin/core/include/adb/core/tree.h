@@ -7,8 +7,10 @@
 // after construction: any number of threads may query one tree at once.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
@@ -42,6 +44,35 @@ struct BuildSettings {
   /// shows the measurements behind the default. In (0, 1].
   double areaThreshold = 0.35;
 };
+
+namespace detail {
+
+/// Places element 1 of an array of 32-byte records at a 64-byte boundary. The builder
+/// allocates siblings as pairs (2k + 1, 2k + 2) after the root at 0, and a traversal reads
+/// both children of a node together: with this offset each pair shares one cache line
+/// instead of straddling two.
+template <class T>
+struct SiblingPairAllocator {
+  static_assert(sizeof(T) == 32, "two records per cache line");
+  using value_type = T;
+  static constexpr std::size_t kLine = 64;
+  SiblingPairAllocator() = default;
+  template <class U>
+  SiblingPairAllocator(const SiblingPairAllocator<U>&) {}
+  T* allocate(std::size_t n) {
+    void* line = ::operator new(n * sizeof(T) + kLine, std::align_val_t(kLine));
+    return reinterpret_cast<T*>(static_cast<char*>(line) + sizeof(T));
+  }
+  void deallocate(T* p, std::size_t) {
+    ::operator delete(reinterpret_cast<char*>(p) - sizeof(T), std::align_val_t(kLine));
+  }
+  template <class U>
+  bool operator==(const SiblingPairAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const SiblingPairAllocator<U>&) const { return false; }
+};
+
+}  // namespace detail
 
 /// One tree node: 32 bytes, the hot data of the traversal, two per cache line.
 struct Node {
@@ -83,9 +114,13 @@ struct NodeDistribution {
   float halfWidth;  //  4 bytes: half the slab's width, rounded up
   float side;       //  4 bytes: nominal side h of the node's cells, local units
   float density;    //  4 bytes: possible collision cells / cells of the node's grid, [0, 1]
-  float unused;     //  4 bytes: keeps two per cache line
+  float invSide;    //  4 bytes: 1 / side, so that the traversal does not divide
 };
 static_assert(sizeof(NodeDistribution) == 32, "NodeDistribution layout");
+
+/// Node records laid out so that siblings share a cache line (SiblingPairAllocator).
+template <class T>
+using NodeArray = std::vector<T, detail::SiblingPairAllocator<T>>;
 
 class AdbTree {
  public:
@@ -94,9 +129,9 @@ class AdbTree {
   /// are stored in float).
   explicit AdbTree(const TriangleMesh& mesh, const BuildSettings& settings = {});
 
-  const std::vector<Node>& nodes() const { return m_nodes; }
+  const NodeArray<Node>& nodes() const { return m_nodes; }
   const std::vector<NodeSurface>& surfaces() const { return m_surfaces; }
-  const std::vector<NodeDistribution>& distributions() const { return m_distributions; }
+  const NodeArray<NodeDistribution>& distributions() const { return m_distributions; }
   const Node& root() const { return m_nodes[0]; }
 
   /// Vertices in local coordinates: mesh coordinates minus origin().
@@ -120,9 +155,9 @@ class AdbTree {
  private:
   friend struct TreeBuilderAccess;
   BuildSettings m_settings;
-  std::vector<Node> m_nodes;
+  NodeArray<Node> m_nodes;
   std::vector<NodeSurface> m_surfaces;
-  std::vector<NodeDistribution> m_distributions;
+  NodeArray<NodeDistribution> m_distributions;
   std::vector<Vec3> m_vertices;
   std::vector<Triangle> m_triangles;
   std::vector<std::uint32_t> m_meshTriangle;
