@@ -1,7 +1,12 @@
 // AdbTree construction: validates the settings, then runs the build stages in order.
 #include "adb/core/tree.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "cell_count.h"
@@ -10,13 +15,26 @@
 namespace adb {
 namespace {
 
+// A double for an error message: %g, so that 1e-15 reads "1e-15" and 1e300 "1e+300"
+// (std::to_string prints "0.000000" and 300 digits). More digits only where %g's 6 would not
+// round-trip, so that 1.0000001 is not shown as the limit "1" it exceeds.
+std::string formatNumber(double x) {
+  char text[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, x);
+    // Non-finite values (NaN, inf) never compare equal: they print at 6 digits.
+    if (!std::isfinite(x) || std::strtod(text, nullptr) == x) break;
+  }
+  return text;
+}
+
 void validate(const BuildSettings& s) {
   if (s.gridResolution < 1 || s.gridResolution > 32) {
     throw SettingsError("BuildSettings::gridResolution is " + std::to_string(s.gridResolution) +
                         "; it must be in 1..32");
   }
   if (!(s.areaThreshold > 0.0 && s.areaThreshold <= 1.0)) {
-    throw SettingsError("BuildSettings::areaThreshold is " + std::to_string(s.areaThreshold) +
+    throw SettingsError("BuildSettings::areaThreshold is " + formatNumber(s.areaThreshold) +
                         "; it must be in (0, 1]");
   }
   if (s.maxLeafTriangles < 1 || s.maxLeafTriangles > 15) {
@@ -30,11 +48,42 @@ void validate(const BuildSettings& s) {
 constexpr double kMinMeshExtent = 1e-12;
 constexpr double kMaxMeshExtent = 1e12;
 
+// Largest coordinate magnitude of a mesh. The tree itself holds its origin in double, but the
+// origin's arithmetic must stay finite: the box centre (lo + hi) / 2 overflows near DBL_MAX,
+// and a query squares the distance between two tree origins (|R origin + t|^2 in the relative
+// frame), which overflows past 1.3e154 and then culls nothing. 1e150 leaves room for poses
+// whose translations exceed the mesh's own coordinates 1000-fold. It costs no real mesh: a
+// shape with a supported extent (<= 1e12) resolves in double only within ~1e28 of the origin,
+// so beyond that only points, or meshes flat along the far axis, were left.
+constexpr double kMaxMeshCoordinate = 1e150;
+
+// Rejects a mesh whose used vertices reach beyond kMaxMeshCoordinate, naming the first one.
+void validateCoordinates(const TriangleMesh& mesh) {
+  const Aabb& b = mesh.bounds();  // over the vertices that triangles use
+  if (std::max(b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()) <= kMaxMeshCoordinate) {
+    return;
+  }
+  for (const Triangle& t : mesh.triangles()) {
+    for (std::uint32_t i : t) {
+      const Vec3& v = mesh.vertices()[i];
+      if (v.cwiseAbs().maxCoeff() <= kMaxMeshCoordinate) continue;
+      throw MeshError(mesh.name() + ": vertex " + std::to_string(i) + " is at (" +
+                      formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " +
+                      formatNumber(v.z()) + "); an AdbTree supports coordinates up to " +
+                      formatNumber(kMaxMeshCoordinate) +
+                      " in magnitude (move the mesh nearer the origin)");
+    }
+  }
+}
+
 void validateExtent(const TriangleMesh& mesh) {
+  // Finite: validateCoordinates bounds both ends by kMaxMeshCoordinate.
   const double extent = mesh.bounds().extent().maxCoeff();
-  if (extent == 0.0) return;  // every vertex at one point: all degenerate, handled
+  // Every vertex at one point: all triangles degenerate, handled by every stage (the local
+  // frame puts the point at 0, so no float conversion is at stake).
+  if (extent == 0.0) return;
   if (extent < kMinMeshExtent || extent > kMaxMeshExtent) {
-    throw MeshError(mesh.name() + ": the mesh is " + std::to_string(extent) +
+    throw MeshError(mesh.name() + ": the mesh is " + formatNumber(extent) +
                     " units across; an AdbTree supports 1e-12 to 1e12 (rescale the mesh)");
   }
 }
@@ -47,6 +96,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 
 AdbTree::AdbTree(const TriangleMesh& mesh, const BuildSettings& settings) : m_settings(settings) {
   validate(settings);
+  validateCoordinates(mesh);  // first: it makes the extent and the centre finite
   validateExtent(mesh);
   auto t0 = std::chrono::steady_clock::now();
   detail::buildHierarchy(*this, mesh, settings.maxLeafTriangles);

@@ -9,6 +9,7 @@
 // same family as the restricted boxtree the paper built on. Degenerate input (all centroids
 // equal) still splits in halves, so the depth bound holds for any mesh.
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <numeric>
 
@@ -26,6 +27,9 @@ struct BuildItem {
 // Float box that contains the double box: rounded outward, so no query can miss a triangle
 // because of the conversion.
 void storeBox(Node& n, const Aabb& box) {
+  // AdbTree's validation bounds coordinates (1e150) and extents (1e12), so local boxes are
+  // finite and far inside float's range: no inf or NaN can reach a stored box.
+  assert(box.lo.allFinite() && box.hi.allFinite());
   for (int k = 0; k < 3; ++k) {
     float lo = static_cast<float>(box.lo[k]);
     float hi = static_cast<float>(box.hi[k]);
