@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <new>
@@ -95,94 +96,93 @@ TEST(AdbErrorRate, LowerQualitySettingsMakeMoreErrorsNotFewer) {
   EXPECT_GE(loose.percent() + 1.0, strict.percent());
 }
 
-TEST(AdbConfidence, MoreBudgetNeverLowersTheConfidence) {
-  const TriangleMesh mesh = gen::makeModel("knot", 20000);
-  const AdbTree tree(mesh);
-  QueryScratch scratch;
-  std::mt19937_64 rng(test::kSeed);
-  int checked = 0;
-  for (double d = 0.4; d <= 2.0; d += 0.2) {
-    for (int i = 0; i < 6; ++i) {
-      const PosePair p = benchmarkPoses(mesh.bounds(), d, rng);
-      double previous = 0.0;
-      for (std::uint64_t budget : {0ull, 1ull, 4ull, 8ull, 16ull, 32ull, 64ull, 128ull, 256ull,
-                                   512ull, 1024ull, 4096ull, 1ull << 20}) {
-        QuerySettings s = test::adbSettings();
-        s.budgetNodePairs = budget;
-        const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
-        EXPECT_GE(r.confidence, previous) << "d " << d << " pose " << i << " budget " << budget;
-        previous = r.confidence;
-        ++checked;
-      }
-    }
-  }
-  EXPECT_GT(checked, 500);
-}
-
-TEST(AdbConfidence, ExactModeWithMoreBudgetNeverLowersTheConfidence) {
+// Exact mode completes with certainty; cut by a budget before any hit it answers "no" (the
+// baseline without a model) with the estimate's 1 - P as its confidence.
+TEST(AdbConfidence, ExactModeCutSaysNoWithTheEstimate) {
   const TriangleMesh mesh = gen::makeModel("knot", 5000);
   const AdbTree tree(mesh);
   QueryScratch scratch;
   std::mt19937_64 rng(test::kSeed);
+  int cut = 0;
   for (int i = 0; i < 20; ++i) {
     const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.08 * i, rng);
-    double previous = 0.0;
-    for (std::uint64_t budget : {0ull, 10ull, 100ull, 1000ull, 1ull << 30}) {
+    for (std::uint64_t budget : {0ull, 10ull, 100ull, 1000ull}) {
       QuerySettings s = test::exactSettings();
       s.budgetNodePairs = budget;
       const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
-      EXPECT_GE(r.confidence, previous);
-      previous = r.confidence;
+      if (r.stop != StopReason::WorkBudget) continue;
+      ++cut;
+      EXPECT_FALSE(r.collides);
+      EXPECT_TRUE(r.confidence >= 0.0 && r.confidence < 1.0) << r.confidence;
     }
-    EXPECT_EQ(previous, 1.0);
+    QuerySettings s = test::exactSettings();
+    EXPECT_EQ(collide(tree, p.a, tree, p.b, s, scratch).confidence, 1.0);
   }
+  EXPECT_GT(cut, 20);
 }
 
-// Answers grouped by their confidence: how many, how many wrong.
+// Answers grouped by their confidence, as the study's reliability diagram does: 10 bins, the
+// expected calibration error (ECE) and the wrong answers among the confident ones.
 struct Calibration {
+  int answers = 0, wrong = 0;
   int confident = 0, confidentWrong = 0;  // confidence >= 0.99
-  int wrongAboveHalf = 0;                 // wrong answers claiming confidence >= 0.5
+  double ece = 0.0;
 };
 
-Calibration calibrate(const std::string& model, int grid) {
+Calibration calibrate(const std::string& model, std::uint64_t budget) {
   const TriangleMesh mesh = gen::makeModel(model, 5000);
-  BuildSettings b;
-  b.gridResolution = grid;
-  const AdbTree tree(mesh, b);
+  const AdbTree tree(mesh);
   QueryScratch scratch;
   std::mt19937_64 rng(test::kSeed);
   Calibration c;
+  double conf[10] = {}, right[10] = {};
   for (int step = 0; step <= 16; ++step) {
     for (int i = 0; i < 20; ++i) {
       const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng);
-      const bool truth = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch).collides;
-      const QueryResult r = collide(tree, p.a, tree, p.b, test::adbSettings(), scratch);
-      const bool wrong = r.collides != truth;
+      const QueryResult truth = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch);
+      if (!truth.collides && truth.nodePairs <= 1) continue;  // root boxes apart: not counted
+      QuerySettings s = test::adbSettings();
+      s.budgetNodePairs = budget;
+      const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+      const bool wrong = r.collides != truth.collides;
+      ++c.answers;
+      c.wrong += wrong ? 1 : 0;
       if (r.confidence >= 0.99) {
         ++c.confident;
         c.confidentWrong += wrong ? 1 : 0;
       }
-      if (wrong && r.confidence >= 0.5) ++c.wrongAboveHalf;
+      const int bin = std::min(9, static_cast<int>(r.confidence * 10.0));
+      conf[bin] += r.confidence;
+      right[bin] += wrong ? 0.0 : 1.0;
     }
   }
+  for (int b = 0; b < 10; ++b) c.ece += std::abs(right[b] - conf[b]);
+  c.ece /= std::max(1, c.answers);
   return c;
 }
 
 TEST(AdbConfidence, ConfidentAnswersAreRightAtAboutTheClaimedRate) {
   // Claimed: >= 99 % right. Allowed: 98 % (a 1-point margin for ~300 samples per model).
   for (const char* model : {"knot", "pipes", "torus"}) {
-    const Calibration c = calibrate(model, 8);
+    const Calibration c = calibrate(model, std::numeric_limits<std::uint64_t>::max());
     ASSERT_GT(c.confident, 200) << model;
     EXPECT_LE(c.confidentWrong, c.confident / 50) << model;
   }
 }
 
-TEST(AdbConfidence, PrunedDoubtShowsInTheConfidence) {
-  // One cell per node: rounding prunes most pairs, so ADB misses most collisions. The
-  // confidence must say so: pruned pairs keep their expected collision cells as doubt.
-  for (const char* model : {"knot", "torus"}) {
-    const Calibration c = calibrate(model, 1);
-    EXPECT_EQ(c.wrongAboveHalf, 0) << model;
+// Cut queries answer with the more probable side at a calibrated probability. The fitted
+// estimate's ECE on the generated models is 0.03 to 0.12 over the states a query stops in
+// undecided (docs/probability-model.md), lower over all answers since complete ones are
+// certain. Bound: 0.15 per budget, for ~300 answers per model (a bin's sampling error is
+// about 0.03). And the answers beat the paper's "no when cut": fewer wrong than the
+// colliding poses among those counted, which is what answering "no" gets wrong.
+TEST(AdbConfidence, CutAnswersFollowTheEstimateAndAreCalibrated) {
+  for (const char* model : {"knot", "pipes", "torus"}) {
+    for (std::uint64_t budget : {8ull, 64ull, 512ull}) {
+      const Calibration c = calibrate(model, budget);
+      EXPECT_LE(c.ece, 0.15) << model << " budget " << budget;
+      EXPECT_LT(c.wrong, c.answers / 2) << model << " budget " << budget;
+    }
   }
 }
 

@@ -14,17 +14,15 @@
 //     return the better-supported answer (see confidence below)
 //
 // Leaf pairs are never accepted on probability: the tree keeps triangles, so they are decided
-// exactly when popped. Confidence (docs/probability-model.md): for "collision", the largest p
-// of the accepted pairs (1 after an exact hit): the model's probability that one of them
-// really intersects, with no independence assumed between nested pairs. For "no collision",
-// 1 - min(1, U), with U the sum of Pr[X >= 1] over the queued pairs plus E[X] over the pairs
-// pruned so far: it bounds the chance that any unresolved pair collides. Each frontier is a
-// cover of all unresolved pairs, so the smallest U seen so far stays valid: both confidences
-// only grow with budget.
+// exactly when popped. An exact hit, or a traversal that ran out of pairs without pruning any,
+// is certain. A budget stop answers with the fitted estimate (collision_estimate.h):
+// P(collision) from the open pairs (a partition of what is left, so none is nested in
+// another) and what was accepted and pruned; the answer is the more probable side and the
+// confidence its probability. At k_min, or a queue emptied by pruning, the paper's answer.
 //
 // Exact mode is a depth-first descent over overlapping boxes. Cut by a budget, its stack is
-// estimated by the same model (openPairs(), and the confidence 1 - min(1, U)); the next step
-// continues from it. Contact generation samples hits per contact region (hitsPerRegion): once
+// estimated by the same model (openPairs()), it answers "no" unless it has found a hit, with
+// the estimate's 1 - P as its confidence; the next step continues from it. Contact generation samples hits per contact region (hitsPerRegion): once
 // a region holds its quota, its remaining pairs are skipped at no cost, in either mode.
 //
 // Each expansion poses the (up to two) children of each node at most once, lazily
@@ -114,10 +112,8 @@ struct Traversal::Impl {
   QueryResult result;
   bool started = false;  // the roots have been tested
   bool finished = false;
-  double upperSum = 0.0;
-  double minUpperSum = 0.0;
-  double bestAccepted = 0.0;  // largest p of the accepted pairs
   double prunedMass = 0.0;    // sum of E[X] over the pairs pruned for p = 0
+  double bestAccepted = 0.0;  // largest p of the accepted pairs
   bool exactHit = false;
 
   // --- the current step ----------------------------------------------------------------------
@@ -143,7 +139,7 @@ struct Traversal::Impl {
     regionHits.clear();
     result = QueryResult{};
     started = finished = exactHit = false;
-    upperSum = minUpperSum = bestAccepted = prunedMass = 0.0;
+    prunedMass = bestAccepted = 0.0;
     work = StepWork{};
   }
 
@@ -332,8 +328,8 @@ struct Traversal::Impl {
       if (!budgetLeft()) {
         // The stack is what is left unexplored: estimated by the model, it gives the cut
         // query its confidence and the caller its plausible contacts (openPairs()).
-        const double doubt = estimateFrontier();
-        finish(exactHit, exactHit ? 1.0 : 1.0 - std::min(1.0, doubt), result.stop);
+        estimateFrontier();
+        finish(exactHit, exactHit ? 1.0 : 1.0 - collisionProbability(evidence()), result.stop);
         return;
       }
       const Entry e = heap.back();
@@ -394,7 +390,6 @@ struct Traversal::Impl {
                   static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)};
     heap.push_back(e);
     std::push_heap(heap.begin(), heap.end(), heapLess);
-    upperSum += e.upper;  // the stored float, the same value the pop subtracts
   }
 
   void runAdb() {
@@ -406,11 +401,11 @@ struct Traversal::Impl {
         finish(false, 1.0, StopReason::Completed);
         return;
       }
-      // The paper inserts the roots with probability 1: LB is 0 at depth 0, so Eq. 3 is 0.
-      heap.push_back(
-          Entry{1.0f, static_cast<float>(root.upper), 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
-      upperSum = static_cast<float>(root.upper);
-      minUpperSum = upperSum;
+      // The paper inserts the roots with probability 1 so that they are expanded first; alone
+      // in the queue they are popped first anyway, and the evidence needs their estimate
+      // (Eq. 3 is 0 at depth 0, where LB = 0).
+      heap.push_back(Entry{static_cast<float>(root.lower), static_cast<float>(doubtOf(root)), 0, 0,
+                           childRegion(kNoRegion, 0, 0), 0, 0});
     }
     while (!heap.empty()) {
       if (!budgetLeft()) {
@@ -420,11 +415,7 @@ struct Traversal::Impl {
       std::pop_heap(heap.begin(), heap.end(), heapLess);
       const Entry e = heap.back();
       heap.pop_back();
-      upperSum -= e.upper;
       if (!regionFull(e.region) && expandAdb(e)) return;
-      // Rounding must not make an empty queue look doubtful, nor a sum negative.
-      upperSum = heap.empty() ? 0.0 : std::max(0.0, upperSum);
-      minUpperSum = std::min(minUpperSum, upperSum + prunedMass);
     }
     finishUncertain(StopReason::Completed);
   }
@@ -478,25 +469,50 @@ struct Traversal::Impl {
       addWitness(w);
     }
     if (result.collisionPairs < static_cast<std::uint32_t>(settings.kMin)) return false;
-    dropFullRegionsFromHeap();
-    finish(true, exactHit ? 1.0 : bestAccepted, StopReason::QualityReached);
+    finishUncertain(StopReason::QualityReached);
     return true;
   }
 
-  // The answer when neither k_min nor an exact hit decided. The paper answers "no collision"
-  // when the queue runs out; a budget stop answers the same, with the doubt left in the
-  // queue (and in what was pruned) as its confidence, so a cut query says "no, but unsure".
-  // Accepted pairs below k_min are evidence the paper does not act on: they are not
-  // witnesses of a "no".
+  // The answer of an ADB query that stopped without an exact hit deciding it. Certain when
+  // nothing was left or pruned. Cut by a budget: the more probable side under the fitted
+  // estimate. At the quality target or a queue emptied by pruning: the paper's answer
+  // ("collision" at k_min, with the best accepted p; "no" with 1 - the pruned pairs' E[X] as
+  // a bound), which the estimate does not yet beat there (docs/probability-model.md).
+  // Witnesses (accepted pairs) are kept for a "collision" only.
   void finishUncertain(StopReason why) {
     dropFullRegionsFromHeap();
+    double p = 0.0;  // P(collision)
     if (exactHit) {
-      finish(true, 1.0, why);
-      return;
+      p = 1.0;
+    } else if (isBudgetStop(why)) {
+      p = collisionProbability(evidence());
+    } else if (why == StopReason::QualityReached) {
+      p = bestAccepted;
+    } else {
+      p = std::min(1.0, prunedMass);  // Completed: only pruned pairs are left (0: certain)
     }
-    witnesses.clear();
-    result.witnessesDropped = 0;
-    finish(false, 1.0 - std::min(1.0, minUpperSum), why);
+    const bool collides = exactHit || why == StopReason::QualityReached ||
+                          (isBudgetStop(why) && p >= 0.5);
+    if (!collides) {
+      witnesses.clear();
+      result.witnessesDropped = 0;
+    }
+    finish(collides, collides ? p : 1.0 - p, why);
+  }
+
+  Evidence evidence() const {
+    Evidence ev;
+    double miss = 1.0;  // prod (1 - p) over the open pairs
+    for (const Entry& e : heap) {
+      miss *= 1.0 - static_cast<double>(e.p);
+      ev.frontierDoubt += e.upper;
+      ev.bestOpen = std::max(ev.bestOpen, static_cast<double>(e.p));
+    }
+    ev.frontierUnion = 1.0 - miss;
+    ev.prunedDoubt = prunedMass;
+    ev.openPairs = static_cast<std::uint32_t>(std::min<std::size_t>(heap.size(), 0xFFFFFFFFu));
+    ev.collisionPairs = result.collisionPairs;
+    return ev;
   }
 
   // Pairs of regions whose hits were found are resolved, not open: a cut query leaves only
@@ -519,19 +535,15 @@ struct Traversal::Impl {
   }
 
   // Exact mode cut by a budget: the model's estimates for the pairs left on the stack (at
-  // most 3 per level of depth, not counted as node pairs). Returns their doubt: the sum of
-  // Pr[X >= 1].
-  double estimateFrontier() {
+  // most 3 per level of depth, not counted as node pairs).
+  void estimateFrontier() {
     dropFullRegions();
-    double doubt = 0.0;
     for (Entry& e : heap) {
       const detail::PairEstimate est =
           detail::estimatePair(a, e.a, e.depthA, b, e.b, e.depthB, frame);
       e.p = static_cast<float>(est.lower);
       e.upper = static_cast<float>(doubtOf(est));
-      doubt += e.upper;
     }
-    return doubt;
   }
 
   void finish(bool collides, double confidence, StopReason why) {
@@ -565,6 +577,7 @@ const QueryResult& Traversal::result() const { return m_impl->result; }
 const StepWork& Traversal::lastStep() const { return m_impl->work; }
 const std::vector<OpenPair>& Traversal::openPairs() const { return m_impl->heap; }
 const std::vector<Witness>& Traversal::witnesses() const { return m_impl->witnesses; }
+Evidence Traversal::evidence() const { return m_impl->evidence(); }
 
 std::size_t Traversal::capacityBytes() const {
   return m_impl->heap.capacity() * sizeof(Entry) + m_impl->witnesses.capacity() * sizeof(Witness) +

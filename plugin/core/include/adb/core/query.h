@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "adb/core/collision_estimate.h"
 #include "adb/core/geometry.h"
 #include "adb/core/tree.h"
 
@@ -86,11 +87,15 @@ struct Witness {
 };
 
 struct QueryResult {
+  /// Certain after an exact hit or a complete traversal. Cut by a budget: the more probable
+  /// answer, P(collision) >= 0.5 under the fitted estimate (collision_estimate.h). At k_min:
+  /// "collision" (the paper's rule); a queue emptied by pruning: "no collision". Exact mode
+  /// cut before any hit answers "no" (the baseline of a traversal without a model).
   bool collides = false;
-  /// Estimated probability that `collides` is right, in [0, 1]. See docs/probability-model.md:
-  /// for "collision", the largest p of the accepted collision pairs (1 after an exact hit);
-  /// for "no collision", 1 - min(1, the doubt left: Pr[X >= 1] summed over the pairs still
-  /// queued, E[X] over the pairs pruned). Both only grow as a query runs longer.
+  /// Estimated probability that `collides` is right, in [0, 1]: 1 when certain; cut by a
+  /// budget, max(P, 1 - P) (exact mode: 1 - P); at k_min the best accepted pair's p; after
+  /// pruning, 1 - min(1, sum of the pruned pairs' E[X]). docs/probability-model.md measures
+  /// how well these are calibrated.
   double confidence = 0.0;
   StopReason stop = StopReason::Completed;
   std::uint64_t nodePairs = 0;       ///< node pairs evaluated (box test, probability)
@@ -168,6 +173,9 @@ class Traversal {
   /// Node pairs accepted on probability and intersecting triangle pairs found so far
   /// (cleared when the answer is "no collision").
   const std::vector<Witness>& witnesses() const;
+  /// What the query has seen so far, the input of its collision estimate
+  /// (collision_estimate.h); summarised from the open pairs when called.
+  Evidence evidence() const;
   /// Bytes currently reserved (grows to the largest query seen, never shrinks).
   std::size_t capacityBytes() const;
 

@@ -1,0 +1,298 @@
+// adb-calibrate: fits the collision estimate (adb/core/collision_estimate.h) on generated
+// models and checks it on meshes it never saw.
+//
+// For every benchmark pose (Zachmann's procedure: distances 0.4 to 2.0, random rotations) whose
+// root boxes overlap, each ADB quality setting is run as one Traversal stopped at work budgets
+// 1, 2, 4, ... node pairs; every budget stop is a sample (the estimate answers those): the
+// evidence's features and the exact answer. Work budgets make the fit reproducible; a time budget stops
+// a traversal in one of the same states. The fit is a logistic regression (Newton's method)
+// whose weights on evidence features are held >= 0, each generated model weighted equally.
+// It prints the weights as the C++ line collision_estimate.cpp holds and the expected
+// calibration error (10 bins) per model and budget, on the fit set and on the check meshes.
+//
+//   adb-calibrate [--triangles N] [--rotations N] [--mesh FILE ...]
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "adb/core/benchmark_poses.h"
+#include "adb/core/collision_estimate.h"
+#include "adb/core/mesh_generators.h"
+#include "adb/core/query.h"
+#include "adb/core/tree.h"
+#include "adb/io/mesh_file.h"
+
+namespace {
+
+using Features = std::array<double, adb::kEstimateFeatures>;
+
+struct Sample {
+  Features f;
+  bool truth;
+  int checkpoint;  // the work budget was 2^checkpoint node pairs
+};
+
+struct ModelSamples {
+  std::string name;
+  std::vector<Sample> samples;
+};
+
+constexpr int kCheckpoints = 14;  // work budgets 2^0 .. 2^13 node pairs
+struct Quality {
+  double pMin;
+  int kMin;
+};
+constexpr Quality kQualities[] = {{0.99, 10}, {0.9, 5}, {0.9, 1}, {0.5, 1}};
+
+// The samples of one pose under one quality setting.
+void sampleTraversal(const adb::AdbTree& tree, const adb::PosePair& p, const Quality& q,
+                     bool truth, std::vector<Sample>& out) {
+  adb::QuerySettings s;
+  s.pMin = q.pMin;
+  s.kMin = q.kMin;
+  adb::Traversal t(tree, p.a, tree, p.b, s);
+  for (int c = 0; c < kCheckpoints; ++c) {
+    const std::uint64_t target = std::uint64_t{1} << c;
+    const std::uint64_t done = t.result().nodePairs;
+    if (target > done || done == 0) t.step(adb::StepBudget{target - std::min(target, done)});
+    // The estimate answers budget stops only: a query that ended (certain, at k_min, or with
+    // its queue emptied by pruning) is not a sample.
+    if (t.done()) return;
+    out.push_back(Sample{adb::estimateFeatures(t.evidence()), truth, c});
+  }
+}
+
+ModelSamples collect(const std::string& name, const adb::TriangleMesh& mesh, int rotations) {
+  const adb::AdbTree tree(mesh);
+  adb::QueryScratch scratch;
+  adb::QuerySettings exact;
+  exact.mode = adb::QueryMode::Exact;
+  std::mt19937_64 rng(1);
+  ModelSamples m{name, {}};
+  for (int step = 0; step <= 16; ++step) {
+    for (int r = 0; r < rotations; ++r) {
+      const adb::PosePair p = adb::benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng);
+      const adb::QueryResult truth = adb::collide(tree, p.a, tree, p.b, exact, scratch);
+      if (truth.nodePairs <= 1 && !truth.collides) continue;  // root boxes apart: not counted
+      for (const Quality& q : kQualities) sampleTraversal(tree, p, q, truth.collides, m.samples);
+    }
+  }
+  std::fprintf(stderr, "%s: %zu samples\n", name.c_str(), m.samples.size());
+  return m;
+}
+
+double predict(const Features& f, const adb::EstimateWeights& w) {
+  double z = 0.0;
+  for (int i = 0; i < adb::kEstimateFeatures; ++i) z += w[i] * f[i];
+  return z >= 0.0 ? 1.0 / (1.0 + std::exp(-z)) : std::exp(z) / (1.0 + std::exp(z));
+}
+
+// The weighted log-loss the fit minimises (each model's samples weigh 1 in all).
+double logLoss(const std::vector<ModelSamples>& models, const adb::EstimateWeights& w) {
+  double loss = 0.0;
+  for (const ModelSamples& m : models) {
+    const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
+    for (const Sample& s : m.samples) {
+      const double p = std::clamp(predict(s.f, w), 1e-15, 1.0 - 1e-15);
+      loss -= weight * std::log(s.truth ? p : 1.0 - p);
+    }
+  }
+  return loss;
+}
+
+// Logistic regression by Newton's method with step halving (near-separable data make the plain
+// step overshoot); evidence weights that would go negative are held at 0 (an active set), so
+// that more evidence never lowers the estimate.
+adb::EstimateWeights fit(const std::vector<ModelSamples>& models) {
+  constexpr int n = adb::kEstimateFeatures;
+  adb::EstimateWeights w{};
+  std::array<bool, n> free{};
+  free.fill(true);
+  for (int round = 0; round < n; ++round) {
+    for (int iteration = 0; iteration < 50; ++iteration) {
+      Eigen::MatrixXd hessian = Eigen::MatrixXd::Identity(n, n) * 1e-6;  // a little ridge
+      Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
+      for (const ModelSamples& m : models) {
+        const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
+        for (const Sample& s : m.samples) {
+          const double p = predict(s.f, w);
+          const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), n);
+          gradient += weight * (p - (s.truth ? 1.0 : 0.0)) * x;
+          hessian += weight * std::max(p * (1.0 - p), 1e-12) * x * x.transpose();
+        }
+      }
+      for (int i = 0; i < n; ++i) {
+        if (free[i]) continue;
+        gradient[i] = 0.0;
+        hessian.row(i).setZero();
+        hessian.col(i).setZero();
+        hessian(i, i) = 1.0;
+      }
+      const Eigen::VectorXd delta = hessian.ldlt().solve(gradient);
+      const double before = logLoss(models, w);
+      double step = 1.0;
+      adb::EstimateWeights next = w;
+      for (int halving = 0; halving < 40; ++halving, step *= 0.5) {
+        for (int i = 0; i < n; ++i) next[i] = w[i] - step * delta[i];
+        if (logLoss(models, next) <= before) break;
+      }
+      w = next;
+      if (step * delta.norm() < 1e-10) break;
+    }
+    // Collinear evidence features (the union, the doubt and the best open bound move
+    // together) can take negative weights in an unconstrained fit: hold the most negative at 0
+    // and refit, one at a time.
+    int worst = -1;
+    for (int i = 0; i < n; ++i) {
+      if (free[i] && adb::kEvidenceFeature[i] && w[i] < 0.0 && (worst < 0 || w[i] < w[worst])) {
+        worst = i;
+      }
+    }
+    if (worst < 0) break;
+    free[worst] = false;
+    w[worst] = 0.0;
+  }
+  return w;
+}
+
+// Expected calibration error of the answers the estimate gives (the more probable side, with
+// its probability as confidence), 10 equal bins.
+double ece(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
+  std::array<double, 10> conf{}, right{};
+  std::array<int, 10> count{};
+  for (const Sample* s : samples) {
+    const double p = predict(s->f, w);
+    const bool answer = p >= 0.5;
+    const double c = answer ? p : 1.0 - p;
+    const int bin = std::min(9, static_cast<int>(c * 10.0));
+    conf[bin] += c;
+    right[bin] += answer == s->truth ? 1.0 : 0.0;
+    ++count[bin];
+  }
+  double e = 0.0;
+  for (int b = 0; b < 10; ++b) {
+    if (count[b] > 0) e += std::abs(right[b] - conf[b]);
+  }
+  return samples.empty() ? 0.0 : e / static_cast<double>(samples.size());
+}
+
+double errorRate(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
+  int wrong = 0;
+  for (const Sample* s : samples) wrong += (predict(s->f, w) >= 0.5) != s->truth ? 1 : 0;
+  return samples.empty() ? 0.0 : 100.0 * wrong / static_cast<double>(samples.size());
+}
+
+// One line per model: pooled ECE, then ECE per budget (grouped by powers of 4) and at quality
+// stops; the error rate of the answers beside the pooled figure.
+void report(const ModelSamples& m, const adb::EstimateWeights& w) {
+  std::vector<const Sample*> all;
+  for (const Sample& s : m.samples) all.push_back(&s);
+  std::printf("| %s | %zu | %.3f | %.1f |", m.name.c_str(), all.size(), ece(all, w),
+              errorRate(all, w));
+  for (int lo = 0; lo < kCheckpoints; lo += 2) {
+    std::vector<const Sample*> group;
+    for (const Sample& s : m.samples) {
+      if (s.checkpoint >= lo && s.checkpoint < lo + 2) group.push_back(&s);
+    }
+    if (group.size() < 20) {
+      std::printf(" - |");
+    } else {
+      std::printf(" %.3f (%zu) |", ece(group, w), group.size());
+    }
+  }
+  std::printf("\n");
+}
+
+void printTable(const char* title, const std::vector<ModelSamples>& models,
+                const adb::EstimateWeights& w) {
+  std::printf("\n%s\n\n| model | samples | ECE | error %% |", title);
+  for (int lo = 0; lo < kCheckpoints; lo += 2) {
+    std::printf(" budget %d-%d |", 1 << lo, (1 << (lo + 2)) - 1);
+  }
+  std::printf("\n|---|---|---|---|");
+  for (int lo = 0; lo < kCheckpoints; lo += 2) std::printf("---|");
+  std::printf("\n");
+  for (const ModelSamples& m : models) report(m, w);
+}
+
+// Every sample as CSV (set, model, checkpoint, features, truth): for looking at the data.
+void writeSamples(const std::string& path, const std::vector<ModelSamples>& fitSet,
+                  const std::vector<ModelSamples>& checkSet) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) {
+    std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
+    std::exit(1);
+  }
+  std::fprintf(out, "set,model,checkpoint,f0,f1,f2,f3,f4,f5,truth\n");
+  for (const auto* set : {&fitSet, &checkSet}) {
+    for (const ModelSamples& m : *set) {
+      for (const Sample& s : m.samples) {
+        std::fprintf(out, "%s,%s,%d", set == &fitSet ? "fit" : "check", m.name.c_str(),
+                     s.checkpoint);
+        for (double f : s.f) std::fprintf(out, ",%.9g", f);
+        std::fprintf(out, ",%d\n", s.truth ? 1 : 0);
+      }
+    }
+  }
+  std::fclose(out);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::size_t triangles = 20000;
+  int rotations = 40;
+  std::vector<std::string> meshes;
+  std::string samplesPath;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "adb-calibrate: %s needs a value\n", flag.c_str());
+      return 2;
+    }
+    const std::string value = argv[++i];
+    if (flag == "--triangles") {
+      triangles = std::strtoul(value.c_str(), nullptr, 10);
+    } else if (flag == "--rotations") {
+      rotations = std::atoi(value.c_str());
+    } else if (flag == "--mesh") {
+      meshes.push_back(value);
+    } else if (flag == "--samples") {
+      samplesPath = value;
+    } else {
+      std::fprintf(stderr, "adb-calibrate: unknown flag %s\n", flag.c_str());
+      return 2;
+    }
+  }
+  if (triangles < 1000 || rotations < 1) {
+    std::fprintf(stderr, "adb-calibrate: --triangles must be >= 1000, --rotations >= 1\n");
+    return 2;
+  }
+  std::vector<ModelSamples> fitSet;
+  for (const char* name : {"knot", "pipes", "gears", "lock", "torus", "sphere"}) {
+    fitSet.push_back(collect(name, adb::gen::makeModel(name, triangles), rotations));
+  }
+  std::vector<ModelSamples> checkSet;
+  for (const std::string& path : meshes) {
+    checkSet.push_back(collect(path, adb::io::loadMesh(path), rotations));
+  }
+  if (!samplesPath.empty()) {
+    writeSamples(samplesPath, fitSet, checkSet);
+  }
+  const adb::EstimateWeights fitted = fit(fitSet);
+  std::printf("fitted weights (collision_estimate.cpp):\nconstexpr EstimateWeights kFittedWeights{");
+  for (int i = 0; i < adb::kEstimateFeatures; ++i) {
+    std::printf("%s%.6g", i ? ", " : "", fitted[i]);
+  }
+  std::printf("};\n");
+  printTable("Fitted weights, generated models (the fit set):", fitSet, fitted);
+  if (!checkSet.empty()) printTable("Fitted weights, check meshes (not fitted):", checkSet, fitted);
+  return 0;
+}

@@ -1,0 +1,99 @@
+// The collision estimate (adb/core/collision_estimate.h): a probability for any evidence, and
+// monotone in the evidence for a collision. Its calibration is tested through queries in
+// test_query_adb.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "adb/core/collision_estimate.h"
+
+namespace adb {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+Evidence randomEvidence(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_real_distribution<double> logSum(-12.0, 8.0);
+  Evidence e;
+  e.frontierUnion = unit(rng);
+  e.frontierDoubt = std::exp(logSum(rng));
+  e.prunedDoubt = unit(rng) < 0.5 ? 0.0 : std::exp(logSum(rng));
+  e.bestOpen = e.frontierUnion * unit(rng);
+  e.openPairs = static_cast<std::uint32_t>(std::exp(logSum(rng) + 4.0));
+  e.collisionPairs = static_cast<std::uint32_t>(unit(rng) * 20.0);
+  return e;
+}
+
+TEST(CollisionEstimate, AnyEvidenceGivesAProbability) {
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 20000; ++i) {
+    const double p = collisionProbability(randomEvidence(rng));
+    ASSERT_TRUE(p >= 0.0 && p <= 1.0) << p;
+  }
+  for (double x : {0.0, 1.0, -1.0, 2.0, kInf, -kInf, kNaN, 1e308, -1e308}) {
+    Evidence e;
+    e.frontierUnion = e.frontierDoubt = e.prunedDoubt = e.bestOpen = x;
+    e.openPairs = e.collisionPairs = 0xFFFFFFFFu;
+    const double p = collisionProbability(e);
+    EXPECT_TRUE(p >= 0.0 && p <= 1.0) << "evidence " << x << " gave " << p;
+    for (double f : estimateFeatures(e)) EXPECT_TRUE(std::isfinite(f)) << "evidence " << x;
+  }
+}
+
+// More evidence for a collision (a larger union, doubt, pruned doubt, best open bound, or more
+// accepted pairs) never lowers the estimate: with the fitted weights, and with any weights
+// whose evidence terms are >= 0 (what the fit guarantees).
+TEST(CollisionEstimate, MoreEvidenceNeverLowersTheEstimate) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, 2.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    EstimateWeights w{};
+    const bool fitted = trial == 0;
+    for (int i = 0; i < kEstimateFeatures; ++i) {
+      w[i] = kEvidenceFeature[i] ? std::abs(normal(rng)) : normal(rng);
+    }
+    const auto p = [&](const Evidence& e) {
+      return fitted ? collisionProbability(e) : collisionProbability(e, w);
+    };
+    for (int i = 0; i < 200; ++i) {
+      const Evidence base = randomEvidence(rng);
+      const double p0 = p(base);
+      Evidence more = base;
+      more.frontierUnion = std::min(1.0, base.frontierUnion + 0.1);
+      more.bestOpen = std::min(more.frontierUnion, base.bestOpen + 0.05);
+      EXPECT_GE(p(more), p0);
+      more = base;
+      more.frontierDoubt *= 3.0;
+      EXPECT_GE(p(more), p0);
+      more = base;
+      more.prunedDoubt += 0.5;
+      EXPECT_GE(p(more), p0);
+      more = base;
+      more.collisionPairs += 1;
+      EXPECT_GE(p(more), p0);
+    }
+  }
+}
+
+TEST(CollisionEstimate, WeightsTurnFeaturesIntoALogisticModel) {
+  // sigmoid(w . f) with the features as documented: known values.
+  Evidence e;
+  e.frontierUnion = 0.5;
+  e.frontierDoubt = 1.0 - 1e-3;  // log(doubt + 1e-3) = 0
+  e.collisionPairs = 0;          // log1p = 0
+  e.openPairs = 0;
+  e.bestOpen = 0.25;
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{-1.0, 2, 7, 5, 3, 0}), 0.5, 1e-9);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{std::log(3.0), 0, 0, 0, 0, 0}), 0.75, 1e-12);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 0, 4.0 * std::log(9.0)}), 0.9,
+              1e-9);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 1e6, 0, 0, 0, 0}), 1.0, 1e-12);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, -1e6, 0, 0, 0, 0}), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace adb
