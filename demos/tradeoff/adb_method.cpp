@@ -1,6 +1,9 @@
 // ADB and exact-mode queries on the shared per-model ADB-tree.
 #include "adb_method.h"
 
+#include <cmath>
+#include <limits>
+
 namespace adb::tradeoff {
 
 const AdbTree& SharedTree::treeFor(const Model& model) {
@@ -14,20 +17,25 @@ const AdbTree& SharedTree::treeFor(const Model& model) {
   return *m_tree;
 }
 
-AdbMethod::AdbMethod(std::shared_ptr<SharedTree> shared, const QuerySettings& settings)
-    : m_shared(std::move(shared)),
-      m_settings(settings),
-      m_name(settings.mode == QueryMode::Exact ? "exact" : "adb") {
+AdbMethod::AdbMethod(std::shared_ptr<SharedTree> shared, const QuerySettings& settings,
+                     std::string name)
+    : m_shared(std::move(shared)), m_settings(settings), m_name(std::move(name)) {
   validate(m_settings);
 }
 
 MethodParams AdbMethod::params() const {
   MethodParams p;
-  if (m_settings.mode != QueryMode::Adb) return p;
-  p.isAdb = true;
-  p.pMin = m_settings.pMin;
-  p.kMin = m_settings.kMin;
+  const bool adb = m_settings.mode == QueryMode::Adb;
+  const bool workBudget =
+      m_settings.budgetNodePairs != std::numeric_limits<std::uint64_t>::max();
+  p.hasQuality = adb;
+  p.pMin = adb ? m_settings.pMin : 0.0;
+  p.kMin = adb ? m_settings.kMin : 0;
   p.budgetUs = m_settings.budgetMicros;
+  p.budgetPairs = workBudget ? m_settings.budgetNodePairs : 0;
+  // Exact mode's confidence is the model's estimate only where a budget may cut it; run to
+  // the end it is always 1.
+  p.estimates = adb || std::isfinite(p.budgetUs) || workBudget;
   return p;
 }
 

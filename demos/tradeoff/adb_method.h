@@ -1,5 +1,6 @@
 // The project's own ADB-tree as a measured method: the ADB traversal at one (p_min, k_min,
-// budget) setting, or the tree's exact mode. All of them share one tree per model.
+// time or work budget) setting, or the tree's exact mode (with or without a time budget).
+// All of them share one tree per model.
 #pragma once
 
 #include <memory>
@@ -27,8 +28,11 @@ class SharedTree {
 
 class AdbMethod : public Method {
  public:
-  /// An ADB method (settings.mode == Adb; name "adb") or the exact mode (name "exact").
-  AdbMethod(std::shared_ptr<SharedTree> shared, const QuerySettings& settings);
+  /// An ADB method (settings.mode == Adb: "adb", or "adb-work:N" under a work budget) or
+  /// the exact mode ("exact", or "exact-cut" under a time budget). `name` is the method
+  /// name written to the files.
+  AdbMethod(std::shared_ptr<SharedTree> shared, const QuerySettings& settings,
+            std::string name);
 
   const std::string& name() const override { return m_name; }
   MethodParams params() const override;

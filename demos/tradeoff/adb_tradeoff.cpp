@@ -1,9 +1,12 @@
 // adb-tradeoff: what accuracy costs in time. Runs Zachmann's benchmark (two copies of each
 // model at a range of distances, seeded random orientations) through the ADB-tree's ADB
-// modes (sweeps of p_min, k_min and the time budget), its exact mode, Bullet's GImpact and
-// FCL, all on the same poses, and writes queries.csv (every query, poses at full precision),
-// summary.csv / summary.md (per model, method and parameters), cells.csv (the paper's
-// Fig. 8) and, through demos/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
+// modes (sweeps of p_min, k_min and the time or work budget), its exact mode, Bullet's
+// GImpact and FCL, and opt-in baselines without probability (exact mode cut by a budget, a
+// box-first search, the root boxes alone), all on the same poses, and writes queries.csv
+// (every query, poses at full precision), summary.csv / summary.md (per model, method and
+// parameters; the budgets that reach 5 % and 1 % error), reliability.csv (calibration of
+// the confidences), cells.csv (the paper's Fig. 8) and, through
+// demos/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
 // shared/design/BENCHMARK.md. Timing policy: timing.h (also in --help).
 //
 // Exit status: 0 done, 2 usage error (nothing run), 1 input error (a mesh that cannot be
@@ -57,8 +60,7 @@ int run(const Options& o) {
     return kInputError;
   }
   auto tree = std::make_shared<SharedTree>();
-  std::vector<std::unique_ptr<Method>> methods =
-      makeMethods(o.methods, o.pMins, o.kMins, o.budgetsUs, tree);
+  std::vector<std::unique_ptr<Method>> methods = makeMethods(o, tree);
   QueryCsv csv(o.outDir + "/queries.csv");
   Progress progress(queriesPerModel(o, methods.size()) * o.sources.size());
   StudyContext context{o, methods, csv, progress};
@@ -76,7 +78,8 @@ int run(const Options& o) {
     }
   }
   progress.finish();
-  std::fprintf(stderr, "adb-tradeoff: wrote %s/{queries.csv,summary.csv,summary.md,cells.csv}\n",
+  std::fprintf(stderr, "adb-tradeoff: wrote %s/{queries.csv,summary.csv,summary.md,reliability.csv,"
+               "cells.csv}\n",
                o.outDir.c_str());
   if (o.plots) runPlotScript(o.outDir);
   return 0;

@@ -1,6 +1,7 @@
 // CSV field quoting and number formatting.
 #include "csv_format.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace adb::tradeoff {
@@ -16,6 +17,12 @@ std::string format(const char* fmt, double value) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, value);
   return buf;
+}
+
+std::string methodParamFields(const MethodParams& p) {
+  const std::string quality =
+      p.hasQuality ? format("%.15g", p.pMin) + ',' + std::to_string(p.kMin) : std::string(",");
+  return quality + ',' + (std::isfinite(p.budgetUs) ? format("%.15g", p.budgetUs) : "");
 }
 
 }  // namespace adb::tradeoff

@@ -1,6 +1,6 @@
-// The one interface every measured method sits behind (ADB modes, exact mode, GImpact, FCL):
-// prepare its data structures for a model once, then answer posed queries of the model
-// against itself.
+// The one interface every measured method sits behind (ADB modes, exact mode, GImpact, FCL,
+// the box-only baselines): prepare its data structures for a model once, then answer posed
+// queries of the model against itself.
 #pragma once
 
 #include <cstddef>
@@ -29,18 +29,24 @@ struct Answer {
   std::int64_t nodePairs = -1;   ///< node pairs evaluated; -1 when the method cannot tell
 };
 
-/// The ADB parameters of a method (only ADB methods have them).
+/// The parameters of a method's setting, written to the p_min, k_min and budget_us columns.
 struct MethodParams {
-  bool isAdb = false;
+  bool hasQuality = false;  ///< ADB traversals: p_min and k_min apply
   double pMin = 0.0;
   int kMin = 0;
-  double budgetUs = std::numeric_limits<double>::infinity();  ///< infinity: no budget
+  double budgetUs = std::numeric_limits<double>::infinity();  ///< infinity: no time budget
+  std::uint64_t budgetPairs = 0;  ///< a work budget in node pairs; 0: none (adb-work:N)
+  /// The confidence is the method's own estimate (ADB, or a traversal a budget may cut), so
+  /// its calibration is measured (reliability.csv, ece); exact methods report 1 and trivial
+  /// ones a fixed 0.5, which have nothing to calibrate.
+  bool estimates = false;
 };
 
 class Method {
  public:
   virtual ~Method() = default;
-  /// "adb", "exact", "gimpact" or "fcl".
+  /// "adb", "adb-work:N", "exact", "exact-cut", "box-first", "root-boxes", "gimpact" or
+  /// "fcl".
   virtual const std::string& name() const = 0;
   virtual MethodParams params() const { return {}; }
   /// Builds what the method needs for `model` (untimed). Called once per model.

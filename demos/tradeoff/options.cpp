@@ -137,9 +137,31 @@ std::vector<double> parseBudgets(const std::string& flag, const std::string& tex
   return out;
 }
 
+// Positive node-pair counts, each at most once (a repeat would measure one setting twice
+// under one name).
+std::vector<std::uint64_t> parseBudgetPairs(const std::string& flag, const std::string& text) {
+  std::vector<std::uint64_t> out;
+  for (const std::string& item : splitOn(text, ',')) {
+    const long long n = parseInteger(flag, item);
+    if (n < 1) fail(flag, item, "a work budget must be a positive number of node pairs");
+    const auto pairs = static_cast<std::uint64_t>(n);
+    if (std::find(out.begin(), out.end(), pairs) != out.end()) fail(flag, item, "listed twice");
+    out.push_back(pairs);
+  }
+  if (out.empty()) fail(flag, text, "empty list");
+  return out;
+}
+
 const std::vector<std::string>& knownMethods() {
-  static const std::vector<std::string> methods{"adb", "exact", "gimpact", "fcl"};
+  static const std::vector<std::string> methods{"adb",       "exact",      "gimpact", "fcl",
+                                                "exact-cut", "box-first", "root-boxes"};
   return methods;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
 }
 
 std::vector<std::string> parseMethods(const std::string& flag, const std::string& text) {
@@ -147,13 +169,26 @@ std::vector<std::string> parseMethods(const std::string& flag, const std::string
   const auto& known = knownMethods();
   for (const std::string& item : splitOn(text, ',')) {
     if (std::find(known.begin(), known.end(), item) == known.end()) {
-      fail(flag, item, "unknown method; known methods: adb, exact, gimpact, fcl");
+      fail(flag, item, "unknown method; known methods: " + joined(known));
     }
     if (std::find(out.begin(), out.end(), item) != out.end()) fail(flag, item, "listed twice");
     out.push_back(item);
   }
   if (out.empty()) fail(flag, text, "no methods");
   return out;
+}
+
+// exact-cut and box-first run only under finite time budgets: with none they would
+// silently measure nothing.
+void checkBudgetedMethods(const Options& o) {
+  const bool finite = std::any_of(o.budgetsUs.begin(), o.budgetsUs.end(),
+                                  [](double b) { return std::isfinite(b); });
+  for (const char* name : {"exact-cut", "box-first"}) {
+    if (!finite && std::find(o.methods.begin(), o.methods.end(), name) != o.methods.end()) {
+      throw UsageError(std::string("--methods '") + name +
+                       "': runs under the finite --budget-us values, and none is given");
+    }
+  }
 }
 
 ModelSource parseModel(const std::string& flag, const std::string& text) {
@@ -211,6 +246,8 @@ void applyValueFlag(Options& o, const std::string& flag, const std::string& valu
     o.kMins = parseKMins(flag, value);
   } else if (flag == "--budget-us") {
     o.budgetsUs = parseBudgets(flag, value);
+  } else if (flag == "--budget-pairs") {
+    o.budgetPairs = parseBudgetPairs(flag, value);
   } else if (flag == "--out") {
     if (value.empty()) fail(flag, value, "empty directory name");
     o.outDir = value;
@@ -222,9 +259,10 @@ void applyValueFlag(Options& o, const std::string& flag, const std::string& valu
 }
 
 bool takesValue(const std::string& flag) {
-  static const char* const flags[] = {"--mesh",    "--model", "--distances", "--rotations",
-                                      "--seed",    "--methods", "--p-min",   "--k-min",
-                                      "--budget-us", "--out", "--repeats"};
+  static const char* const flags[] = {"--mesh",      "--model",        "--distances",
+                                      "--rotations", "--seed",         "--methods",
+                                      "--p-min",     "--k-min",        "--budget-us",
+                                      "--budget-pairs", "--out",       "--repeats"};
   return std::find(std::begin(flags), std::end(flags), flag) != std::end(flags);
 }
 
@@ -263,6 +301,7 @@ Options parseOptions(int argc, const char* const* argv) {
   if (o.sources.empty()) {
     throw UsageError("nothing to measure: give at least one --mesh FILE or --model NAME");
   }
+  checkBudgetedMethods(o);
   return o;
 }
 
@@ -282,7 +321,7 @@ std::string usageText() {
       "                    [--distances 0.4:2.0:0.1] [--rotations 200] [--seed 1]\n"
       "                    [--methods adb,exact,gimpact,fcl]\n"
       "                    [--p-min 0.5,0.9,0.99] [--k-min 1,5,10] [--budget-us none,5,20,100]\n"
-      "                    [--repeats 3] [--out DIR] [--no-plots]\n"
+      "                    [--budget-pairs N,...] [--repeats 3] [--out DIR] [--no-plots]\n"
       "\n"
       "Accuracy vs time of ADB-tree queries against exact peers, on Zachmann's benchmark:\n"
       "two copies of each model, bounding-box centres DISTANCE apart (unit: half the largest\n"
@@ -296,12 +335,22 @@ std::string usageText() {
       "  --distances LIST     numbers or ranges start:end:step, comma-separated\n"
       "  --methods LIST       adb (every p_min x k_min x budget), exact (the ADB-tree's exact\n"
       "                       mode), gimpact (Bullet GImpact, full contact set), fcl (FCL\n"
-      "                       OBBRSS, first contact)\n"
+      "                       OBBRSS, first contact); opt-in baselines that show whether\n"
+      "                       ADB's probability pays for itself:\n"
+      "                       exact-cut (exact mode under each finite --budget-us; a cut\n"
+      "                       query answers what the core returns), box-first (the same tree\n"
+      "                       searched largest box overlap first, no probability, under each\n"
+      "                       finite --budget-us; cut: 'collides' while boxes still overlap,\n"
+      "                       confidence 0.5), root-boxes ('collides' whenever the root boxes\n"
+      "                       overlap, confidence 0.5)\n"
       "  --p-min, --k-min     ADB quality targets to sweep\n"
-      "  --budget-us LIST     ADB wall-clock budgets in microseconds; 'none' = no budget\n"
+      "  --budget-us LIST     wall-clock budgets in microseconds for adb, exact-cut and\n"
+      "                       box-first; 'none' = no budget (adb only)\n"
+      "  --budget-pairs LIST  ADB work budgets in node pairs, positive integers (default: none);\n"
+      "                       each N adds the methods 'adb-work:N', one per p_min x k_min\n"
       "  --repeats N          timed runs per query (default 3)\n"
       "  --out DIR            output directory (default tradeoff-results): queries.csv,\n"
-      "                       summary.csv, summary.md, cells.csv and the plots\n"
+      "                       summary.csv, summary.md, reliability.csv, cells.csv, plots\n"
       "  --no-plots           do not run demos/tradeoff/plot_tradeoff.py\n"
       "\n"
       "Timing: every method's data structures are built once per model, untimed. Each query\n"
@@ -312,6 +361,13 @@ std::string usageText() {
       "GImpact: collision margin 0; its algorithm object is created once per model (as a\n"
       "Bullet world keeps one per pair) and each query times processCollision, which always\n"
       "computes the full contact set.\n"
+      "\n"
+      "Calibration: reliability.csv bins the confidence of every method with an estimate (adb,\n"
+      "adb-work:N, exact-cut; 'adb-pooled' pools adb and adb-work) into 10 bins of width 0.1\n"
+      "and gives, per bin, the mean confidence and the fraction of right answers (against\n"
+      "exact, else fcl; root boxes overlapping only). summary.csv's ece is the expected\n"
+      "calibration error sum_b (count_b / N) |fraction_right_b - mean_confidence_b|.\n"
+      "summary.md ends with the smallest budgets that reach 5 % and 1 % error.\n"
       "\n"
       "Exit status: 0 done, 2 usage error, 1 input error (unreadable mesh, bad geometry); on\n"
       "an input error the results of the models before it are written first.\n";

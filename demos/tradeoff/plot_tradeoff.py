@@ -2,17 +2,20 @@
 """Plots for the ADB-tree accuracy/time trade-off benchmark (`adb-tradeoff`).
 
 Usage:
-    plot_tradeoff.py DIR          read DIR/queries.csv (+ summary.csv, cells.csv) and
-                                  write the PNG figures listed in PLOTS into DIR
+    plot_tradeoff.py DIR          read DIR/queries.csv (+ summary.csv, cells.csv,
+                                  reliability.csv) and write the PNG figures listed in
+                                  PLOTS into DIR
     plot_tradeoff.py --self-test  build a small synthetic DIR, plot it, check the result
 
 What this file holds, top to bottom:
   * the expected CSV columns and a header-checking reader;
   * `Dataset`: per-distance aggregates of queries.csv (two passes, so memory stays small
     however many queries were run), the per-setting summary (summary.csv, or derived from
-    queries.csv when that file is missing or empty), and the Fig. 8 cell counts;
-  * one function per figure (paper Figs. 8-11 plus budget, scaling and speed-up plots);
-    each returns a matplotlib Figure, or a string saying why it was skipped;
+    queries.csv when that file is missing or empty), the Fig. 8 cell counts and the
+    calibration bins (reliability.csv);
+  * one function per figure (paper Figs. 8-11 plus budget, scaling, speed-up, reliability
+    and error-against-time plots); each returns a matplotlib Figure, or a string saying
+    why it was skipped;
   * `main` and the `--self-test` (synthetic data generator and checks).
 
 The spec is /work/shared/design/BENCHMARK.md; the paper's figures are described in
@@ -30,6 +33,7 @@ import random
 import subprocess
 import sys
 import tempfile
+import textwrap
 import traceback
 from collections import defaultdict
 from typing import NamedTuple, Optional
@@ -39,7 +43,7 @@ SYSTEM_PYTHON = "/usr/bin/python3"
 
 # Bound by load_matplotlib() only when there is something to plot: importing matplotlib
 # takes most of a second, and bad input should be reported without that wait.
-plt = Line2D = NullFormatter = None
+plt = Line2D = NullFormatter = colormaps = HALO = None
 
 
 def ensure_matplotlib():
@@ -62,11 +66,14 @@ def ensure_matplotlib():
 
 def load_matplotlib():
     """Import matplotlib with the headless Agg backend into this module's globals."""
-    global plt, Line2D, NullFormatter
+    global plt, Line2D, NullFormatter, colormaps, HALO
     if plt is not None:
         return
     import matplotlib
     matplotlib.use("Agg")
+    colormaps = matplotlib.colormaps
+    from matplotlib import patheffects
+    HALO = patheffects.withStroke(linewidth=2, foreground="white")
     import matplotlib.pyplot
     from matplotlib.lines import Line2D
     from matplotlib.ticker import NullFormatter
@@ -84,11 +91,17 @@ SUMMARY_COLUMNS = (
     "model", "triangles", "method", "p_min", "k_min", "budget_us", "queries", "overlapping",
     "mean_us", "p95_us", "error_pct", "mean_confidence", "mean_node_pairs",
     "speedup_vs_exact", "speedup_vs_gimpact", "speedup_vs_fcl")
+SUMMARY_OPTIONAL = ("ece",)  # absent from runs before the calibration columns existed
 CELL_COLUMNS = ("model", "triangles", "cell", "count")
+RELIABILITY_COLUMNS = (
+    "model", "triangles", "method", "p_min", "k_min", "budget_us", "bin", "bin_lo", "bin_hi",
+    "count", "mean_confidence", "fraction_right")
 
 PEERS = ("exact", "gimpact", "fcl")  # the methods ADB is compared with, in legend order
 PEER_LABELS = {"exact": "exact (own tree)", "gimpact": "Bullet GImpact", "fcl": "FCL OBBRSS"}
 PEER_COLOURS = {"exact": "black", "gimpact": "tab:red", "fcl": "tab:purple"}
+WORK_PREFIX = "adb-work:"  # queries.csv names ADB under a work budget of N pairs adb-work:N
+POOLED = "adb-pooled"  # summary and reliability rows over every ADB setting together
 ADB_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:cyan", "tab:olive",
                "tab:brown", "tab:pink", "tab:gray", "gold", "navy", "teal", "salmon")
 TRIANGLE_STYLES = (("-", "o"), ("--", "s"), (":", "^"), ("-.", "v"), ((0, (5, 1, 1, 1)), "D"))
@@ -102,24 +115,31 @@ class InputError(Exception):
 
 
 class Setting(NamedTuple):
-    """One method with its parameters; p_min, k_min, budget_us are None unless ADB."""
+    """One method with its parameters, None where they do not apply.
+
+    method is "adb", "adb-work" (work budget in `work`, node pairs), POOLED, a peer, or one
+    of the baselines "exact-cut", "box-first" (with budget_us) and "root-boxes".
+    """
     method: str
     p_min: Optional[float] = None
     k_min: Optional[int] = None
     budget_us: Optional[float] = None
+    work: Optional[int] = None
 
     def sort_key(self):
-        # Peers first in PEERS order, then ADB by k_min, p_min, budget (None = no budget last).
+        # Peers first in PEERS order, then the rest by k_min, p_min, budget (none last).
         rank = PEERS.index(self.method) if self.method in PEERS else len(PEERS)
         return (rank, self.method, self.k_min or 0, self.p_min or 0.0,
-                self.budget_us is None, self.budget_us or 0.0)
+                self.budget_us is None, self.budget_us or 0.0, self.work or 0)
 
     def label(self):
-        if self.method != "adb":
+        if self.method not in ("adb", "adb-work"):
             return PEER_LABELS.get(self.method, self.method)
         text = "ADB p_min=%g k_min=%d" % (self.p_min, self.k_min)
         if self.budget_us is not None:
             text += ", budget %g µs" % self.budget_us
+        if self.work is not None:
+            text += ", work %d node pairs" % self.work
         return text
 
 
@@ -136,17 +156,25 @@ def _float(text):
 
 
 def _setting(method, p_min, k_min, budget):
+    """The Setting of one CSV row; ValueError when an ADB row lacks its parameters."""
     method = method.strip().lower()
-    if method != "adb":
-        return Setting(method)  # parameters mean nothing for exact methods
+    if method in ("exact-cut", "box-first"):
+        return Setting(method, budget_us=_float(budget))
+    if method != "adb" and not method.startswith(WORK_PREFIX):
+        return Setting(method)  # parameters mean nothing for the other methods
     p, k = _float(p_min), _float(k_min)
     if p is None or k is None:
         raise ValueError("ADB row without p_min/k_min")
-    return Setting("adb", p, int(round(k)), _float(budget))
+    if method == "adb":
+        return Setting("adb", p, int(round(k)), _float(budget))
+    return Setting("adb-work", p, int(round(k)), work=int(method[len(WORK_PREFIX):]))
 
 
-def open_table(path, required):
-    """Open a CSV file, check its header; return (file, reader, column index)."""
+def open_table(path, required, optional=()):
+    """Open a CSV file, check its header; return (file, reader, column index).
+
+    The index holds every required column and those optional ones the header has.
+    """
     try:
         # errors="replace": a garbled byte in a half-written file must not stop the plots.
         handle = open(path, newline="", encoding="utf-8", errors="replace")
@@ -163,7 +191,8 @@ def open_table(path, required):
         handle.close()
         raise InputError("%s: header lacks column%s %s" % (
             path, "s" if len(missing) > 1 else "", ", ".join(missing)))
-    return handle, reader, {name: header.index(name) for name in required}
+    present = list(required) + [name for name in optional if name in header]
+    return handle, reader, {name: header.index(name) for name in present}
 
 
 class Acc:
@@ -186,6 +215,16 @@ class SummaryRow(NamedTuple):
     error_pct: Optional[float]
     mean_confidence: Optional[float]
     speedup: dict  # peer method -> speed-up of this setting against it
+    ece: Optional[float] = None  # expected calibration error, where the method estimates
+
+
+class Bin(NamedTuple):
+    """One confidence bin of reliability.csv; confidence and right are None when empty."""
+    lo: float
+    hi: float
+    count: int
+    confidence: Optional[float]
+    right: Optional[float]
 
 
 class Dataset:
@@ -200,6 +239,8 @@ class Dataset:
         self.summary = {}  # (model, triangles, Setting) -> SummaryRow
         self.summary_error_label = ""
         self.cells = None  # (model, triangles) -> [count] * 512, or None without cells.csv
+        # (model, triangles, Setting) -> [Bin] in bin order, or None without reliability.csv
+        self.reliability = None
 
     # ---- queries.csv
     def read_queries(self):
@@ -282,10 +323,11 @@ class Dataset:
         if not os.path.exists(path) or os.path.getsize(path) == 0:
             self._summary_from_queries("no summary.csv")
             return
-        handle, reader, col = open_table(path, SUMMARY_COLUMNS)
+        handle, reader, col = open_table(path, SUMMARY_COLUMNS, SUMMARY_OPTIONAL)
+        width = max(col.values()) + 1
         with handle:
             for record in reader:
-                if len(record) < len(col):
+                if len(record) < width:
                     continue
                 cell = {name: record[index] for name, index in col.items()}
                 try:
@@ -296,7 +338,8 @@ class Dataset:
                     continue
                 speedup = {peer: _float(cell["speedup_vs_" + peer]) for peer in PEERS}
                 self.summary[key] = SummaryRow(_float(cell["mean_us"]), _float(cell["error_pct"]),
-                                               _float(cell["mean_confidence"]), speedup)
+                                               _float(cell["mean_confidence"]), speedup,
+                                               _float(cell.get("ece", "")))
         if not self.summary:  # a header and nothing else: the run stopped before summing up
             self._summary_from_queries("summary.csv has no rows")
             return
@@ -347,6 +390,31 @@ class Dataset:
                     cells.setdefault(key, [0.0] * CELLS)[index] = count
         self.cells = cells
 
+    # ---- reliability.csv
+    def read_reliability(self):
+        path = os.path.join(self.dir, "reliability.csv")
+        if not os.path.exists(path) or os.path.getsize(path) == 0:
+            return
+        handle, reader, col = open_table(path, RELIABILITY_COLUMNS)
+        bins = defaultdict(dict)  # key -> {bin index: Bin}
+        with handle:
+            for row in reader:
+                if len(row) < len(col):
+                    continue
+                cell = {name: row[index] for name, index in col.items()}
+                try:
+                    setting = _setting(cell["method"], cell["p_min"], cell["k_min"],
+                                       cell["budget_us"])
+                    key = (cell["model"].strip(), int(float(cell["triangles"])), setting)
+                    index, count = int(float(cell["bin"])), int(float(cell["count"]))
+                    lo, hi = float(cell["bin_lo"]), float(cell["bin_hi"])
+                except ValueError:
+                    continue
+                bins[key][index] = Bin(lo, hi, count, _float(cell["mean_confidence"]),
+                                       _float(cell["fraction_right"]))
+        self.reliability = {key: [by_index[i] for i in sorted(by_index)]
+                            for key, by_index in bins.items()}
+
     # ---- look-ups
     def models(self):
         return sorted({key[0] for key in self.per_distance} | {key[0] for key in self.summary})
@@ -375,6 +443,7 @@ def load(directory):
     data.read_queries()
     data.read_summary()
     data.read_cells()
+    data.read_reliability()
     return data
 
 
@@ -426,6 +495,19 @@ def subplot_grid(count, width=5.2, height=3.8, columns=None):
     for ax in flat[count:]:
         ax.set_visible(False)
     return fig, flat[:count]
+
+
+def wrap_to_figure(fig, text, points):
+    """`text` wrapped to the figure's width at a font of `points` size.
+
+    The layout engines do not fit a figure title into the figure, so a long one overran
+    narrow (one-panel) figures. DejaVu Sans averages under 0.6 em per character.
+    """
+    return textwrap.fill(text, max(20, int(fig.get_figwidth() * 72 / (0.6 * points))))
+
+
+def fit_suptitle(fig, text):
+    fig.suptitle(wrap_to_figure(fig, text, 12))  # suptitle's default size is "large", 12 pt
 
 
 def log_if_wide(ax, values, axis="y"):
@@ -511,7 +593,8 @@ def plot_time_vs_distance(data):
     if not data.per_distance:
         return "queries.csv has no usable rows"
     every = data.settings()
-    shown = [s for s in every if s.method != "adb"] + featured_adb(every, cap=4)
+    # Only the peers beside ADB: the baselines' budgets would bury the ADB lines.
+    shown = [s for s in every if s.method in PEERS] + featured_adb(every, cap=4)
     colours = colour_map(shown)
     fig, axes = subplot_grid(len(models))
     for ax, model in zip(axes, models):
@@ -524,7 +607,7 @@ def plot_time_vs_distance(data):
         ax.set_ylabel("mean time per query (µs)")
         ax.grid(True, which="both", alpha=0.3)
         triangle_legend(ax, data.triangle_counts(model))
-    fig.suptitle("Query time vs distance (paper Fig. 9)")
+    fit_suptitle(fig, "Query time vs distance (paper Fig. 9)")
     setting_legend(fig, shown, colours)
     return fig
 
@@ -552,7 +635,7 @@ def plot_error_vs_distance(data):
         ax.set_ylim(bottom=0)
         ax.grid(True, alpha=0.3)
         triangle_legend(ax, data.triangle_counts(model))
-    fig.suptitle("ADB error vs distance (paper Fig. 10; %s)" % data.reference_label())
+    fit_suptitle(fig, "ADB error vs distance (paper Fig. 10; %s)" % data.reference_label())
     setting_legend(fig, shown, colours)
     return fig
 
@@ -614,42 +697,58 @@ def plot_pmin_kmin(data):
                 pmin_scale(ax, p_values)
             if field == "error_pct":
                 ax.set_ylim(bottom=0)
-    fig.suptitle("ADB parameters: time and error (paper Fig. 11; no time budget)")
+    fit_suptitle(fig, "ADB parameters: time and error (paper Fig. 11; no time budget)")
     return fig
+
+
+def _time_budget_bases(data, model, triangles):
+    """The (p_min, k_min) pairs of `model` run under at least one ADB time budget."""
+    return {(s.p_min, s.k_min) for (m, t, s) in data.summary
+            if m == model and t == triangles and s.method == "adb" and s.budget_us is not None}
+
+
+def base_colours(bases):
+    """One palette colour per (p_min, k_min), the paper's default first, shared by all panels."""
+    ordered = sorted(bases, key=lambda base: (base != DEFAULT_ADB, base[1], base[0]))
+    return {base: ADB_COLOURS[i % len(ADB_COLOURS)] for i, base in enumerate(ordered)}
+
+
+def base_label(base):
+    return "p_min=%g k_min=%d" % base
 
 
 def plot_error_vs_budget(data):
     """The quality a given time budget buys: error, confidence and actual time per budget."""
-    models = [m for m in data.models()
-              if any(s.budget_us is not None for (mm, t, s) in data.summary
-                     if mm == m and t == largest_size(data, m))]
+    bases_of = {m: _time_budget_bases(data, m, largest_size(data, m)) for m in data.models()}
+    models = [m for m in data.models() if bases_of[m]]
     if not models:
         return "no ADB rows with a time budget"
+    colours = base_colours(set().union(*bases_of.values()))
     fig, axes = plt.subplots(len(models), 3, figsize=(15, 3.9 * len(models)), squeeze=False,
                              layout="constrained")
     for line, model in zip(axes, models):
         triangles = largest_size(data, model)
-        rows = {s: r for (m, t, s), r in data.summary.items() if m == model and t == triangles}
-        bases = sorted({(s.p_min, s.k_min) for s in rows if s.budget_us is not None})
+        rows = {s: r for (m, t, s), r in data.summary.items()
+                if m == model and t == triangles and s.method == "adb"}
         panels = ((line[0], "error_pct", data.summary_error_label, "error"),
                   (line[1], "mean_confidence", "mean confidence", "mean confidence"),
                   (line[2], "mean_us", "mean time per query (µs)", "actual time"))
         budgets_all = [s.budget_us for s in rows if s.budget_us is not None]
         for ax, field, y_label, what in panels:
-            for i, (p_min, k_min) in enumerate(bases):
-                colour = ADB_COLOURS[i % len(ADB_COLOURS)]
+            for base in sorted(bases_of[model]):
+                colour = colours[base]
                 points = sorted((s.budget_us, getattr(r, field)) for s, r in rows.items()
-                                if s.method == "adb" and (s.p_min, s.k_min) == (p_min, k_min)
-                                and s.budget_us is not None and getattr(r, field) is not None)
+                                if (s.p_min, s.k_min) == base and s.budget_us is not None
+                                and getattr(r, field) is not None)
                 ax.plot([p[0] for p in points], [p[1] for p in points], marker="o", markersize=4,
-                        color=colour, label="p_min=%g k_min=%d" % (p_min, k_min))
-                free = rows.get(Setting("adb", p_min, k_min, None))
+                        color=colour)
+                free = rows.get(Setting("adb", *base))
                 if free is not None and getattr(free, field) is not None:
                     # The same setting without budget: what the budget converges to.
                     ax.axhline(getattr(free, field), color=colour, linestyle="--", linewidth=1)
-            if field == "mean_us" and budgets_all:
+            if field == "mean_us":
                 span = [min(budgets_all), max(budgets_all)]
-                ax.plot(span, span, color="gray", linestyle=":", label="time = budget")
+                ax.plot(span, span, color="gray", linestyle=":")
             log_if_wide(ax, budgets_all, axis="x")
             set_value_ticks(ax, budgets_all)
             if field == "mean_us":
@@ -661,10 +760,14 @@ def plot_error_vs_budget(data):
             ax.set_title("%s (%s triangles): %s" % (model, format(triangles, ","), what),
                          fontsize="medium")
             ax.grid(True, which="both", alpha=0.3)
-            handles, _ = ax.get_legend_handles_labels()
-            handles.append(Line2D([], [], color="dimgray", linestyle="--", label="no budget"))
-            ax.legend(handles=handles, fontsize="small")
-    fig.suptitle("ADB under a time budget (dashed: the same setting without budget)")
+    # One legend for all panels, beside them: inside, nine settings covered the curves.
+    handles = [Line2D([], [], color=colour, marker="o", markersize=4, label=base_label(base))
+               for base, colour in colours.items()]
+    handles += [Line2D([], [], color="dimgray", linestyle="--", label="the same, no budget"),
+                Line2D([], [], color="gray", linestyle=":", label="time = budget")]
+    fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5),
+               fontsize="small", frameon=False)
+    fit_suptitle(fig, "ADB under a time budget (dashed: the same setting without budget)")
     return fig
 
 
@@ -674,7 +777,8 @@ def plot_time_vs_triangles(data):
     if not models:
         return "every model was run at a single triangle count"
     every = data.settings()
-    shown = [s for s in every if s.method != "adb"] + featured_adb(every, cap=4)
+    # Only the peers beside ADB: the baselines' budgets would bury the ADB lines.
+    shown = [s for s in every if s.method in PEERS] + featured_adb(every, cap=4)
     colours = colour_map(shown)
     fig, axes = subplot_grid(len(models))
     for ax, model in zip(axes, models):
@@ -692,7 +796,7 @@ def plot_time_vs_triangles(data):
         ax.set_xlabel("triangles per object")
         ax.set_ylabel("mean time per query (µs)")
         ax.grid(True, which="both", alpha=0.3)
-    fig.suptitle("Query time vs mesh size (all distances)")
+    fit_suptitle(fig, "Query time vs mesh size (all distances)")
     setting_legend(fig, shown, colours)
     return fig
 
@@ -724,7 +828,7 @@ def plot_cells_histogram(data):
         ax.text(0.99, 0.97, "max/mean %.2f   min/mean %.2f" % (high, low), ha="right", va="top",
                 transform=ax.transAxes, fontsize="small",
                 bbox=dict(facecolor="white", alpha=0.85, edgecolor="none"))
-    fig.suptitle("Possible collision cells per cell index over all tree nodes "
+    fit_suptitle(fig, "Possible collision cells per cell index, all tree nodes "
                  "(paper Fig. 8; 1.0 = uniform)")
     return fig
 
@@ -755,7 +859,7 @@ def plot_speedup(data):
             positions = [j + (i - (len(peers) - 1) / 2) * width for j in range(len(shown))]
             # Bars grow from 1 (no speed-up), so being slower than a peer points down.
             bars = ax.bar(positions, [h - 1.0 if h else 0.0 for h in heights], bottom=1.0,
-                          width=width, color=PEER_COLOURS[peer], label="vs " + PEER_LABELS[peer])
+                          width=width, color=PEER_COLOURS[peer])
             ax.bar_label(bars, labels=["%.2g" % h if h else "" for h in heights],
                          fontsize=6.5, padding=1)
         ax.axhline(1.0, color="gray", linewidth=1)
@@ -767,8 +871,300 @@ def plot_speedup(data):
         ax.set_ylabel("speed-up (peer time / ADB time)")
         ax.set_title("%s (%s triangles)" % (model, format(triangles, ",")))
         ax.grid(True, axis="y", which="both", alpha=0.3)
-        ax.legend(fontsize="small")
-    fig.suptitle("Speed-up of ADB (no budget) over the exact methods (mean time, all distances)")
+    # One legend beside the panels: inside, it sat on the tallest (GImpact) bars.
+    handles = [Line2D([], [], color=PEER_COLOURS[p], linewidth=6, label="vs " + PEER_LABELS[p])
+               for p in peers]
+    fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5),
+               fontsize="small", frameon=False)
+    fit_suptitle(fig, "Speed-up of ADB (no budget) over the exact methods "
+                 "(mean time, all distances)")
+    if "gimpact" in peers:
+        caption = ("GImpact builds the full contact set (what Bullet's dynamics needs) rather "
+                   "than a yes/no answer, so the speed-up against it is not like for like.")
+        fig.supxlabel(wrap_to_figure(fig, caption, 9), fontsize=9, style="italic")
+    return fig
+
+
+def _usable(bins):
+    return [b for b in bins if b.count and b.confidence is not None and b.right is not None]
+
+
+def ece_from_bins(bins):
+    """Expected calibration error: the count-weighted mean |confidence - fraction right|."""
+    used = _usable(bins)
+    total = sum(b.count for b in used)
+    return sum(b.count * abs(b.confidence - b.right) for b in used) / total if total else None
+
+
+def _reliability_base(settings):
+    """The (p_min, k_min) whose budget curves the reliability panels show.
+
+    Every p_min/k_min times every budget would be dozens of lines, so one setting: the
+    paper's default when it was run, else the one with the most budgets.
+    """
+    counts = defaultdict(int)
+    for s in settings:
+        if s.method in ("adb", "adb-work"):
+            counts[(s.p_min, s.k_min)] += 1
+    if not counts:
+        return None
+    return DEFAULT_ADB if DEFAULT_ADB in counts else max(counts, key=lambda b: (counts[b], b))
+
+
+def budget_colours(settings):
+    """Sequential colours by budget: Blues for time budgets, Oranges for work budgets.
+
+    The two budgets have different units, hence two colour maps; "no budget" is the dark
+    end of the time budgets, being their limit. Colours go by rank, as budgets are spread
+    over decades.
+    """
+    time = sorted((s for s in settings if s.method == "adb"),
+                  key=lambda s: (s.budget_us is None, s.budget_us or 0.0))
+    work = sorted((s for s in settings if s.method == "adb-work"), key=lambda s: s.work)
+    colours = {}
+    for group, name in ((time, "Blues"), (work, "Oranges")):
+        for i, s in enumerate(group):
+            colours[s] = colormaps[name](0.4 + 0.55 * i / max(1, len(group) - 1))
+    return colours
+
+
+def budget_label(setting):
+    if setting.method == "adb-work":
+        return "work budget %d node pairs" % setting.work
+    if setting.budget_us is None:
+        return "no budget"
+    return "time budget %g µs" % setting.budget_us
+
+
+def reliability_axes(count):
+    """Per panel a square-ish diagram with a short count strip under it, sharing x."""
+    columns = min(count, 2)
+    rows = math.ceil(count / columns)
+    fig = plt.figure(figsize=(5.0 * columns, 5.6 * rows), layout="constrained")
+    grid = fig.add_gridspec(2 * rows, columns, height_ratios=[4, 1] * rows)
+    pairs = []
+    for i in range(count):
+        row, column = divmod(i, columns)
+        main = fig.add_subplot(grid[2 * row, column])
+        pairs.append((main, fig.add_subplot(grid[2 * row + 1, column], sharex=main)))
+    return fig, pairs
+
+
+def _reliability_panel(ax, strip, groups, shown, colours, ece):
+    """Draw one model's diagram: diagonal, the budget curves thin, the pooled curve bold."""
+    ax.plot([0, 1], [0, 1], color="gray", linestyle="--", linewidth=1)
+    for setting in shown:
+        used = _usable(groups[setting])
+        total = sum(b.count for b in used)
+        x, y = [b.confidence for b in used], [b.right for b in used]
+        style = "--" if setting.method == "adb-work" else "-"
+        ax.plot(x, y, color=colours[setting], linestyle=style, linewidth=1.1)
+        # Marker area by the bin's share of this setting's queries: a lone query in a bin
+        # should not read like a thousand.
+        ax.scatter(x, y, s=[4 + 60 * b.count / total for b in used], color=colours[setting],
+                   zorder=3)
+    pooled = _usable(groups.get(Setting(POOLED), []))
+    handles = [Line2D([], [], color="gray", linestyle="--", label="perfect calibration")]
+    if pooled:
+        label = "ADB, all settings pooled" + ("" if ece is None else " (ECE %.3f)" % ece)
+        handles += ax.plot([b.confidence for b in pooled], [b.right for b in pooled],
+                           color="black", linewidth=2.6, marker="o", markersize=4, zorder=4,
+                           label=label)
+        # Counts span decades (most answers are confident), hence a log strip.
+        strip.bar([(b.lo + b.hi) / 2 for b in pooled], [b.count for b in pooled],
+                  width=[0.9 * (b.hi - b.lo) for b in pooled], color="black")
+        strip.set_yscale("log")
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1.02)
+    ax.set_ylabel("fraction of right answers")
+    ax.grid(True, alpha=0.3)
+    ax.tick_params(labelbottom=False)
+    strip.set_xlabel("confidence (the method's own estimate)")
+    strip.set_ylabel("queries\n(pooled)")
+    strip.grid(True, axis="y", alpha=0.3)
+    # Under the strip, not in the diagram: any corner of it may hold points.
+    strip.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.55), ncol=2,
+                 fontsize="small", frameon=False)
+
+
+def plot_reliability(data):
+    """Is ADB's confidence right? Confidence against the fraction of right answers, binned."""
+    if data.reliability is None:
+        return "no reliability.csv (written by newer adb-tradeoff runs)"
+    sizes = defaultdict(set)
+    for model, triangles, _ in data.reliability:
+        sizes[model].add(triangles)
+    keys = [(model, max(sizes[model])) for model in sorted(sizes)]
+    groups_of = {key: {s: bins for (m, t, s), bins in data.reliability.items() if (m, t) == key}
+                 for key in keys}
+    keys = [key for key in keys if any(_usable(b) for b in groups_of[key].values())]
+    if not keys:
+        return "reliability.csv has no filled bins"
+    base = _reliability_base(s for groups in groups_of.values() for s in groups)
+    every = {s for groups in groups_of.values() for s in groups
+             if s.method in ("adb", "adb-work") and (s.p_min, s.k_min) == base}
+    colours = budget_colours(every)
+    fig, pairs = reliability_axes(len(keys))
+    for (ax, strip), key in zip(pairs, keys):
+        groups = groups_of[key]
+        pooled = groups.get(Setting(POOLED), [])
+        ece = summary_value(data, key[0], key[1], Setting(POOLED), "ece")
+        if ece is None:  # the summary's figure when it has one, so plot and table agree
+            ece = ece_from_bins(pooled)
+        shown = sorted((s for s in groups if s in colours), key=Setting.sort_key)
+        _reliability_panel(ax, strip, groups, shown, colours, ece)
+        title = "%s (%s triangles)" % (key[0], format(key[1], ","))
+        ax.set_title(title + ("" if ece is None else ": pooled ECE %.3f" % ece))
+    ordered = sorted(colours, key=lambda s: (s.method, s.budget_us is None, s.budget_us or 0,
+                                             s.work or 0))
+    handles = [Line2D([], [], color=colours[s], linestyle="--" if s.method == "adb-work" else "-",
+                      marker="o", markersize=4, label=budget_label(s)) for s in ordered]
+    if handles:
+        fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5),
+                   fontsize="small", frameon=False,
+                   title="ADB %s, by budget" % base_label(base))
+    fit_suptitle(fig, "Reliability of ADB's confidence (marker area: the bin's share of "
+                 "the setting's queries)")
+    return fig
+
+
+# Pareto figure styles: (colour, line style, marker) of the baselines drawn as curves, and
+# (colour, marker, label) of the methods that are single points.
+BASELINE_CURVES = {"exact-cut": ("black", ":", "x"), "box-first": ("teal", "-.", "^")}
+SINGLE_POINTS = {"root-boxes": ("dimgray", "*", "root boxes"),
+                 "exact": (PEER_COLOURS["exact"], "o", "exact"),
+                 "fcl": (PEER_COLOURS["fcl"], "X", "FCL"),
+                 "gimpact": (PEER_COLOURS["gimpact"], "P", "GImpact")}
+ERROR_TICKS = (0, 0.5, 1, 2, 5, 10, 20, 50, 100)
+
+
+def _curve(ax, rows, colour, style, marker, width=1.2, alpha=1.0):
+    """A line through the (mean time, error) of `rows`, in the order given (by budget)."""
+    points = [(r.mean_us, r.error_pct) for r in rows
+              if r.mean_us is not None and r.error_pct is not None]
+    if points:
+        ax.plot([p[0] for p in points], [p[1] for p in points], color=colour, linestyle=style,
+                marker=marker, markersize=5 if width > 2 else 4, linewidth=width, alpha=alpha)
+    return points
+
+
+def _budget_labels(ax, rows, settings, colour):
+    """Name the budget at each point of a curve (only the paper's setting: all would clutter)."""
+    for s in settings:
+        row = rows[s]
+        # Time budgets labelled right of their points, work budgets left: the two curves
+        # run close together. The white halo keeps a label readable across other lines.
+        timed = s.work is None
+        ax.annotate("%g µs" % s.budget_us if timed else "%d pairs" % s.work,
+                    (row.mean_us, row.error_pct), xytext=(5 if timed else -5, -2),
+                    textcoords="offset points", fontsize=6.5, color=colour, va="top",
+                    ha="left" if timed else "right", path_effects=[HALO])
+
+
+def _pareto_adb(ax, rows, colours):
+    """ADB's families: time-budget and work-budget curves per setting, unbudgeted points."""
+    for base, colour in colours.items():
+        default = base == DEFAULT_ADB
+        # The paper's setting bold, the others thin and a little faded behind it.
+        width, alpha = (2.6, 1.0) if default else (1.1, 0.75)
+        timed = sorted((s for s in rows if s.method == "adb" and s.budget_us is not None
+                        and (s.p_min, s.k_min) == base), key=lambda s: s.budget_us)
+        worked = sorted((s for s in rows if s.method == "adb-work" and (s.p_min, s.k_min) == base),
+                        key=lambda s: s.work)
+        _curve(ax, [rows[s] for s in timed], colour, "-", "o", width, alpha)
+        _curve(ax, [rows[s] for s in worked], colour, "--", "s", width, alpha)
+        if default:
+            _budget_labels(ax, rows, timed + worked, colour)
+        free = rows.get(Setting("adb", *base))
+        if free is not None and free.mean_us is not None and free.error_pct is not None:
+            ax.scatter([free.mean_us], [free.error_pct], color=colour, marker="D", zorder=4,
+                       s=70 if default else 30, edgecolors="black" if default else "none")
+
+
+def _pareto_baselines(ax, rows):
+    """exact-cut and box-first as curves over their budgets, the rest as labelled points."""
+    for method, (colour, style, marker) in BASELINE_CURVES.items():
+        budgeted = sorted((s for s in rows if s.method == method),
+                          key=lambda s: s.budget_us or 0.0)
+        _curve(ax, [rows[s] for s in budgeted], colour, style, marker)
+    singles = [(rows[Setting(m)], m) for m in SINGLE_POINTS if Setting(m) in rows]
+    singles = sorted((r.mean_us, r.error_pct, m) for r, m in singles
+                     if r.mean_us is not None and r.error_pct is not None)
+    for i, (x, y, method) in enumerate(singles):
+        colour, marker, label = SINGLE_POINTS[method]
+        ax.scatter([x], [y], color=colour, marker=marker, s=70, zorder=5)
+        # Alternate heights: exact and FCL often sit close together at 0 %.
+        ax.annotate(label, (x, y), xytext=(4, 5 + 10 * (i % 2)), textcoords="offset points",
+                    fontsize=7.5, color=colour, path_effects=[HALO])
+
+
+def _error_axis(ax, top):
+    # symlog: linear through 0 (the exact methods' 0 % stays visible), logarithmic above
+    # 1 %, so 1 and 5 % are told apart as well as 20 and 50 %.
+    ax.set_yscale("symlog", linthresh=1.0, linscale=0.6)
+    top = min(100.0, max(10.0, 1.5 * top))
+    ax.set_ylim(-0.3, top)
+    ticks = [t for t in ERROR_TICKS if t <= top]
+    ax.set_yticks(ticks)
+    ax.set_yticklabels(["%g" % t for t in ticks])
+    ax.yaxis.set_minor_formatter(NullFormatter())
+    for level in (1, 5):
+        ax.axhline(level, color="gray", linestyle=":", linewidth=1)
+
+
+def _pareto_legend(fig, colours, seen):
+    """Colour = ADB setting, line style = budget kind; then the baselines and peers.
+
+    Only what some panel shows: `seen` holds the settings drawn.
+    """
+    handles = [Line2D([], [], color=c, linewidth=2.6 if b == DEFAULT_ADB else 1.2,
+                      label="ADB " + base_label(b)) for b, c in colours.items()]
+    methods = {s.method for s in seen}
+    timed = {s.budget_us is not None for s in seen if s.method == "adb"}
+    families = (("-", "o", "ADB, time budgets", True in timed),
+                ("--", "s", "ADB, work budgets", "adb-work" in methods),
+                ("none", "D", "ADB, no budget", False in timed))
+    handles += [Line2D([], [], color="dimgray", linestyle=style, marker=marker, markersize=4,
+                       label=label) for style, marker, label, shown in families if shown]
+    handles += [Line2D([], [], color=c, linestyle=style, marker=marker, markersize=5,
+                       label="%s, time budgets" % method)
+                for method, (c, style, marker) in BASELINE_CURVES.items() if method in methods]
+    handles += [Line2D([], [], color=c, linestyle="none", marker=marker, markersize=7,
+                       label=label)
+                for method, (c, marker, label) in SINGLE_POINTS.items() if method in methods]
+    handles.append(Line2D([], [], color="gray", linestyle=":", label="1 % and 5 % error"))
+    fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize="small",
+               frameon=False)
+
+
+def plot_pareto(data):
+    """What each method's error costs in time: error rate against mean query time."""
+    def panel_rows(model):
+        triangles = largest_size(data, model)
+        return {s: r for (m, t, s), r in data.summary.items()
+                if m == model and t == triangles and s.method != POOLED
+                and r.mean_us and r.error_pct is not None}
+    rows_of = {m: panel_rows(m) for m in data.models()}
+    models = [m for m in data.models() if any(s.method in ("adb", "adb-work") for s in rows_of[m])]
+    if not models:
+        return "no ADB rows with both a mean time and an error rate"
+    colours = base_colours({(s.p_min, s.k_min) for m in models for s in rows_of[m]
+                            if s.method in ("adb", "adb-work")})
+    # Wide panels: root boxes and GImpact stretch the time axis over four decades or more.
+    fig, axes = subplot_grid(len(models), width=7.5, height=5.0, columns=min(len(models), 2))
+    for ax, model in zip(axes, models):
+        rows = rows_of[model]
+        _pareto_adb(ax, rows, colours)
+        _pareto_baselines(ax, rows)
+        ax.set_xscale("log")  # from a fraction of a µs (root boxes) to GImpact's ms
+        _error_axis(ax, max(r.error_pct for r in rows.values()))
+        ax.set_xlabel("mean time per query (µs)")
+        ax.set_ylabel(data.summary_error_label)
+        ax.set_title("%s (%s triangles)" % (model, format(largest_size(data, model), ",")))
+        ax.grid(True, which="major", alpha=0.3)
+    _pareto_legend(fig, colours, {s for m in models for s in rows_of[m]})
+    fit_suptitle(fig, "Error against time: each point a budget or setting "
+                 "(lower left is better)")
     return fig
 
 
@@ -780,6 +1176,8 @@ PLOTS = (
     ("time_vs_triangles.png", plot_time_vs_triangles),
     ("cells_histogram.png", plot_cells_histogram),
     ("speedup.png", plot_speedup),
+    ("reliability.png", plot_reliability),
+    ("pareto.png", plot_pareto),
 )
 
 
@@ -840,15 +1238,66 @@ def _cell(value):
     return "" if value is None else value
 
 
+SYNTHETIC_BUDGETS_US = (10.0, 30.0, 100.0, 300.0)
+RELIABILITY_BINS = 10
+
+
+def _synthetic_settings():
+    """Every kind of row the tool writes: peers, baselines, ADB with and without budgets."""
+    settings = [Setting(m) for m in PEERS] + [Setting("root-boxes")]
+    settings += [Setting("adb", p, k) for p in (0.5, 0.9, 0.99) for k in (1, 5, 10)]
+    bases = ((0.99, 10), (0.9, 5))
+    settings += [Setting("adb", p, k, b) for p, k in bases for b in SYNTHETIC_BUDGETS_US]
+    settings += [Setting("adb-work", p, k, work=w) for p, k in bases for w in (50, 200, 1000)]
+    settings += [Setting(m, budget_us=b) for m in BASELINE_CURVES for b in SYNTHETIC_BUDGETS_US]
+    return settings
+
+
+def _csv_method(setting):
+    return WORK_PREFIX + str(setting.work) if setting.method == "adb-work" else setting.method
+
+
+def _synthetic_query(rng, s, truth, overlap, distance, exact_us):
+    """(answer, confidence or None, time in µs, node pairs or None) of one made-up query."""
+    noise = rng.lognormvariate(0, 0.25)
+    peer_cost = {"exact": 1.0, "gimpact": 12.0, "fcl": 0.4}
+    if s.method in peer_cost:
+        time_us = exact_us * peer_cost[s.method] * noise
+        return truth, 1.0, time_us, int(time_us * 8) if s.method == "exact" else None
+    if s.method == "root-boxes":
+        return overlap, None, 0.05 * noise, 1
+    if s.method in BASELINE_CURVES:
+        full_us = exact_us * (1.0 if s.method == "exact-cut" else 0.7) * noise
+        if full_us <= s.budget_us:
+            return truth, 1.0 if s.method == "exact-cut" else None, full_us, int(full_us * 8)
+        # Cut short: exact-cut falls back on the root boxes, box-first on the boxes it reached.
+        answer = overlap if s.method == "exact-cut" else truth != (rng.random() < 0.3)
+        return (answer, 0.5 if s.method == "exact-cut" else None, s.budget_us * 1.05,
+                int(s.budget_us * 8))
+    near = 0.3 + 2 * math.exp(-((distance - 1.3) / 0.4) ** 2)
+    # A per-query error chance spread around the setting's mean, so confidences fill
+    # several reliability bins; capped at 0.5, where a yes/no guess is no better than a coin.
+    error = min(0.5, near * (0.005 + 0.12 * (1 - s.p_min) + 0.03 / s.k_min)
+                * rng.expovariate(1.0))
+    # The estimate ignores what a budget costs, so budgeted ADB is overconfident: something
+    # for the reliability diagram to show.
+    confidence = max(0.0, min(1.0, 1 - error + rng.gauss(0, 0.02)))
+    time_us = exact_us * (0.12 + 0.3 * s.k_min / 10) * noise
+    if s.budget_us is not None:
+        error += 0.25 * math.exp(-s.budget_us / 40)
+        time_us = min(time_us, s.budget_us * 1.05)
+    if s.work is not None:
+        error += 0.25 * math.exp(-s.work / 150)
+        time_us = min(time_us, s.work / 8 * 1.05)
+    return truth != (rng.random() < error), confidence, time_us, int(time_us * 8)
+
+
 def synthetic_run(directory, seed=7):
-    """Write a plausible small queries.csv, summary.csv and cells.csv into `directory`."""
+    """Write a plausible small queries, summary, reliability and cells CSV into `directory`."""
     rng = random.Random(seed)
     models = {"teddy": (3192, 12768), "pipes": (20000, 80000)}
     distances = [round(0.4 + 0.2 * i, 2) for i in range(9)]
-    settings = [Setting(m) for m in PEERS]
-    settings += [Setting("adb", p, k) for p in (0.5, 0.9, 0.99) for k in (1, 5, 10)]
-    settings += [Setting("adb", p, k, b) for p, k in ((0.99, 10), (0.9, 5))
-                 for b in (10.0, 30.0, 100.0, 300.0)]
+    settings = _synthetic_settings()
     rows, groups = [], defaultdict(list)
     for model, sizes in models.items():
         for triangles in sizes:
@@ -859,35 +1308,27 @@ def synthetic_run(directory, seed=7):
                     pose_a = [v / norm for v in pose_a] + [0.0, 0.0, 0.0]
                     pose_b = [1.0, 0.0, 0.0, 0.0, distance, 0.0, 0.0]
                     truth = rng.random() < 1 / (1 + math.exp(-6 * (1.3 - distance)))
+                    overlap = distance < 1.8  # stands in for "the root boxes overlap"
                     exact_us = 150 * math.exp(-1.8 * (distance - 0.4)) * (triangles / 3192) ** 0.15
                     for s in settings:
-                        noise = rng.lognormvariate(0, 0.25)
-                        answer, confidence, nodes = truth, 1.0, None
-                        if s.method == "exact":
-                            time_us, nodes = exact_us * noise, int(exact_us * 8)
-                        elif s.method == "gimpact":
-                            time_us = exact_us * 12 * noise
-                        elif s.method == "fcl":
-                            time_us = exact_us * 0.4 * noise
-                        else:
-                            near = 0.3 + 2 * math.exp(-((distance - 1.3) / 0.4) ** 2)
-                            error = near * (0.005 + 0.12 * (1 - s.p_min) + 0.03 / s.k_min)
-                            time_us = exact_us * (0.12 + 0.3 * s.k_min / 10) * noise
-                            if s.budget_us is not None:
-                                error += 0.25 * math.exp(-s.budget_us / 40)
-                                time_us = min(time_us, s.budget_us * 1.05)
-                            answer = truth != (rng.random() < error)
-                            confidence = max(0.5, min(1.0, 1 - error + rng.gauss(0, 0.02)))
-                            nodes = int(time_us * 8)
-                        rows.append([model, triangles, s.method, _cell(s.p_min), _cell(s.k_min),
-                                     _cell(s.budget_us), distance, rotation] + pose_a + pose_b +
-                                    [int(answer), "%.4f" % confidence, int(time_us * 1000),
-                                     _cell(nodes)])
-                        groups[(model, triangles, s)].append(
-                            (time_us, answer != truth, confidence, distance < 1.8, nodes))
+                        answer, confidence, time_us, nodes = _synthetic_query(
+                            rng, s, truth, overlap, distance, exact_us)
+                        rows.append([model, triangles, _csv_method(s), _cell(s.p_min),
+                                     _cell(s.k_min), _cell(s.budget_us), distance, rotation]
+                                    + pose_a + pose_b +
+                                    [int(answer), "" if confidence is None else "%.4f" % confidence,
+                                     int(time_us * 1000), _cell(nodes)])
+                        group = (time_us, answer != truth, confidence, overlap, nodes)
+                        groups[(model, triangles, s)].append(group)
+                        if s.method in ("adb", "adb-work"):
+                            groups[(model, triangles, Setting(POOLED))].append(group)
     _write_csv(os.path.join(directory, "queries.csv"), QUERY_COLUMNS, rows)
-    _write_csv(os.path.join(directory, "summary.csv"), SUMMARY_COLUMNS,
+    summary_columns = list(SUMMARY_COLUMNS)
+    summary_columns.insert(summary_columns.index("error_pct") + 1, "ece")
+    _write_csv(os.path.join(directory, "summary.csv"), summary_columns,
                _synthetic_summary(groups))
+    _write_csv(os.path.join(directory, "reliability.csv"), RELIABILITY_COLUMNS,
+               _synthetic_reliability(groups))
     cells = []
     for model in models:
         for triangles in models[model]:
@@ -897,27 +1338,63 @@ def synthetic_run(directory, seed=7):
     _write_csv(os.path.join(directory, "cells.csv"), CELL_COLUMNS, cells)
 
 
+def _has_bins(setting):
+    """The settings reliability.csv holds: those whose confidence is an estimate."""
+    return setting.method in ("adb", "adb-work", "exact-cut", POOLED)
+
+
+def _synthetic_bins(group):
+    """Ten equal confidence bins over the queries with overlapping root boxes."""
+    members = [[] for _ in range(RELIABILITY_BINS)]
+    for _, wrong, confidence, overlap, _ in group:
+        if overlap and confidence is not None:
+            members[min(RELIABILITY_BINS - 1, int(confidence * RELIABILITY_BINS))].append(
+                (confidence, not wrong))
+    return [Bin(i / RELIABILITY_BINS, (i + 1) / RELIABILITY_BINS, len(m),
+                sum(c for c, _ in m) / len(m) if m else None,
+                sum(r for _, r in m) / len(m) if m else None)
+            for i, m in enumerate(members)]
+
+
+def _sorted_groups(groups):
+    return sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2].sort_key()))
+
+
+def _synthetic_reliability(groups):
+    rows = []
+    for (model, triangles, s), group in _sorted_groups(groups):
+        if not _has_bins(s):
+            continue
+        for index, b in enumerate(_synthetic_bins(group)):
+            rows.append([model, triangles, _csv_method(s), _cell(s.p_min), _cell(s.k_min),
+                         _cell(s.budget_us), index, "%.1f" % b.lo, "%.1f" % b.hi, b.count,
+                         "" if b.confidence is None else "%.4f" % b.confidence,
+                         "" if b.right is None else "%.4f" % b.right])
+    return rows
+
+
 def _synthetic_summary(groups):
     means = {key: sum(g[0] for g in group) / len(group) for key, group in groups.items()}
     rows = []
-    for (model, triangles, s), group in sorted(groups.items(),
-                                               key=lambda kv: (kv[0][0], kv[0][1],
-                                                               kv[0][2].sort_key())):
+    for (model, triangles, s), group in _sorted_groups(groups):
         times = sorted(g[0] for g in group)
         overlapping = [g for g in group if g[3]]
         error = 100.0 * sum(g[1] for g in overlapping) / len(overlapping)
+        confidences = [g[2] for g in group if g[2] is not None]
         nodes = [g[4] for g in group if g[4] is not None]
+        ece = ece_from_bins(_synthetic_bins(group)) if _has_bins(s) else None
         speedups = []
         for peer in PEERS:
             # Leave teddy's speed-up cells empty so the reader's fill-in path runs too.
             peer_mean = means.get((model, triangles, Setting(peer)))
             speedups.append("" if model == "teddy" or peer_mean is None
                             else "%.3f" % (peer_mean / means[(model, triangles, s)]))
-        rows.append([model, triangles, s.method, _cell(s.p_min), _cell(s.k_min),
+        rows.append([model, triangles, _csv_method(s), _cell(s.p_min), _cell(s.k_min),
                      _cell(s.budget_us), len(group), len(overlapping),
                      "%.3f" % means[(model, triangles, s)],
                      "%.3f" % times[int(0.95 * (len(times) - 1))],
-                     "%.3f" % error, "%.4f" % (sum(g[2] for g in group) / len(group)),
+                     "%.3f" % error, "" if ece is None else "%.4f" % ece,
+                     "%.4f" % (sum(confidences) / len(confidences)) if confidences else "",
                      "%.1f" % (sum(nodes) / len(nodes)) if nodes else ""] + speedups)
     return rows
 
@@ -940,6 +1417,35 @@ def _keep_rows(path, keep):
     with open(path, newline="", encoding="utf-8") as handle:
         rows = list(csv.reader(handle))
     _write_csv(path, rows[0], [r for r in rows[1:] if keep(r)])
+
+
+def _make_old_format(directory):
+    """Turn a synthetic run into what adb-tradeoff wrote before the calibration columns:
+    only adb and the peers, summary.csv without ece, no reliability.csv."""
+    old = ("adb",) + PEERS
+    _keep_rows(os.path.join(directory, "queries.csv"), lambda r: r[2] in old)
+    path = os.path.join(directory, "summary.csv")
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    drop, method = rows[0].index("ece"), rows[0].index("method")
+    _write_csv(path, [c for i, c in enumerate(rows[0]) if i != drop],
+               [[c for i, c in enumerate(r) if i != drop] for r in rows[1:] if r[method] in old])
+    os.remove(os.path.join(directory, "reliability.csv"))
+
+
+def _new_rows_read(directory):
+    """The new method names, the ece column and reliability.csv come through the readers."""
+    with contextlib.redirect_stdout(io.StringIO()):
+        data = load(directory)
+    key = ("pipes", 80000)
+    pooled = data.summary.get(key + (Setting(POOLED),))
+    bins = data.reliability.get(key + (Setting("adb-work", 0.99, 10, work=200),), [])
+    return (pooled is not None and pooled.ece is not None
+            and key + (Setting("exact-cut", budget_us=30.0),) in data.summary
+            and key + (Setting("root-boxes"),) in data.summary
+            and len(bins) == RELIABILITY_BINS and any(b.count == 0 for b in bins)
+            and abs(ece_from_bins(data.reliability[key + (Setting(POOLED),)]) - pooled.ece)
+            < 1e-3)
 
 
 def _arithmetic_ok(root):
@@ -979,6 +1485,18 @@ def self_test():
         for name, _ in PLOTS:
             check(_is_png(os.path.join(full, name)), "full run wrote %s as a PNG" % name, output)
         check("Traceback" not in output, "full run printed no traceback", output)
+        check(_new_rows_read(full), "new methods, ece and reliability bins are read")
+
+        old = os.path.join(root, "old_format")
+        os.mkdir(old)
+        synthetic_run(old)
+        _make_old_format(old)
+        code, output = _run_self(old)
+        check(code == 0 and "Traceback" not in output, "old-format run exits 0", output)
+        check("skip reliability.png: no reliability.csv" in output,
+              "old-format run skips the reliability diagram with a note", output)
+        for name in ("error_vs_budget.png", "speedup.png", "pareto.png"):
+            check(_is_png(os.path.join(old, name)), "old-format run wrote %s" % name, output)
 
         # A failed tool run: one model, FCL (no exact rows) and one ADB setting, a summary
         # with only its header, no cells, and a last line cut off mid-row.
@@ -989,7 +1507,7 @@ def self_test():
         os.remove(os.path.join(partial, "cells.csv"))
         _keep_rows(os.path.join(partial, "queries.csv"),
                    lambda r: r[0] == "pipes" and r[1] == "20000" and (
-                       r[2] == "fcl" or (r[3], r[4], r[5]) == ("0.99", "10", "")))
+                       r[2] == "fcl" or (r[2], r[3], r[4], r[5]) == ("adb", "0.99", "10", "")))
         with open(os.path.join(partial, "queries.csv"), "a", encoding="utf-8") as handle:
             handle.write("pipes,20000,adb,0.99,10,,1.2,3,1,0,0")
         code, output = _run_self(partial)

@@ -24,13 +24,6 @@ std::string poseFields(const QuaternionPose& p) {
          full(p.t.x()) + ',' + full(p.t.y()) + ',' + full(p.t.z());
 }
 
-// p_min, k_min, budget_us: empty for non-ADB methods; budget_us empty when there is none.
-std::string paramFields(const MethodParams& p) {
-  if (!p.isAdb) return ",,";
-  const std::string budget = std::isfinite(p.budgetUs) ? format("%.15g", p.budgetUs) : "";
-  return format("%.15g", p.pMin) + ',' + std::to_string(p.kMin) + ',' + budget;
-}
-
 }  // namespace
 
 QueryCsv::QueryCsv(const std::string& path) : m_path(path), m_out(path, std::ios::trunc) {
@@ -41,7 +34,7 @@ QueryCsv::QueryCsv(const std::string& path) : m_path(path), m_out(path, std::ios
 void QueryCsv::write(const std::string& model, std::size_t triangles, const std::string& method,
                      const MethodParams& params, double distance, int rotation,
                      const StudyPose& pose, const QueryRecord& r) {
-  m_out << csvField(model) << ',' << triangles << ',' << method << ',' << paramFields(params)
+  m_out << csvField(model) << ',' << triangles << ',' << method << ',' << methodParamFields(params)
         << ',' << format("%.12g", distance) << ',' << rotation << ',' << poseFields(pose.a) << ','
         << poseFields(pose.b) << ',' << (r.collides ? 1 : 0) << ',' << format("%.9g", r.confidence)
         << ',' << format("%.0f", std::round(r.timeNs)) << ',';

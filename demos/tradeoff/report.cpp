@@ -5,8 +5,10 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "budgets.h"
 #include "cell_histogram.h"
 #include "machine_note.h"
+#include "reliability.h"
 #include "summary.h"
 
 namespace adb::tradeoff {
@@ -55,13 +57,16 @@ void writeCells(const std::string& file, const std::vector<ModelResult>& done) {
 }  // namespace
 
 void writeReports(const Options& options, const std::vector<ModelResult>& done) {
+  std::vector<std::vector<SummaryRow>> perModel;
   std::vector<SummaryRow> rows;
   for (const ModelResult& r : done) {
-    const std::vector<SummaryRow> modelRows = summarize(r);
-    rows.insert(rows.end(), modelRows.begin(), modelRows.end());
+    perModel.push_back(summarize(r));
+    rows.insert(rows.end(), perModel.back().begin(), perModel.back().end());
   }
   writeSummaryCsv(path(options, "summary.csv"), rows);
-  writeSummaryMarkdown(path(options, "summary.md"), rows, notes(options, done));
+  writeSummaryMarkdown(path(options, "summary.md"), rows, notes(options, done),
+                       budgetsSection(perModel));
+  writeReliabilityCsv(path(options, "reliability.csv"), done);
   writeCells(path(options, "cells.csv"), done);
 }
 

@@ -5,26 +5,23 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
+#include "calibration.h"
 #include "csv_format.h"
+#include "judging.h"
+#include "pooling.h"
 
 namespace adb::tradeoff {
 
 const char* const kSummaryCsvHeader =
     "model,triangles,method,p_min,k_min,budget_us,queries,overlapping,mean_us,p95_us,error_pct,"
-    "mean_confidence,mean_node_pairs,speedup_vs_exact,speedup_vs_gimpact,speedup_vs_fcl";
+    "ece,mean_confidence,mean_node_pairs,speedup_vs_exact,speedup_vs_gimpact,speedup_vs_fcl";
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-const MethodRecords* findMethod(const ModelResult& r, const std::string& name) {
-  for (const MethodRecords& m : r.methods) {
-    if (m.name == name) return &m;
-  }
-  return nullptr;
-}
 
 double meanUs(const MethodRecords& m) {
   double sum = 0.0;
@@ -44,15 +41,19 @@ double p95Us(const MethodRecords& m) {
   return t[k] / 1000.0;
 }
 
-double errorPct(const ModelResult& r, const MethodRecords& m, const MethodRecords* reference) {
-  if (!reference) return kNaN;
-  std::size_t counted = 0, wrong = 0;
-  for (std::size_t i = 0; i < m.queries.size(); ++i) {
-    if (!r.rootsOverlap[i]) continue;
-    ++counted;
-    wrong += m.queries[i].collides != reference->queries[i].collides ? 1 : 0;
-  }
-  return counted == 0 ? kNaN : 100.0 * static_cast<double>(wrong) / static_cast<double>(counted);
+// Percent of wrong answers among the judged ones; NaN without a reference or a query to
+// count.
+double errorPct(const std::vector<JudgedAnswer>* judged) {
+  if (!judged || judged->empty()) return kNaN;
+  const auto wrong = std::count_if(judged->begin(), judged->end(),
+                                   [](const JudgedAnswer& a) { return !a.right; });
+  return 100.0 * static_cast<double>(wrong) / static_cast<double>(judged->size());
+}
+
+// ECE of a method that estimates its confidence; NaN otherwise (and without a reference).
+double ece(const MethodRecords& m, const std::vector<JudgedAnswer>* judged) {
+  if (!m.params.estimates || !judged) return kNaN;
+  return expectedCalibrationError(reliabilityBins(*judged));
 }
 
 double meanConfidence(const MethodRecords& m) {
@@ -76,30 +77,32 @@ double speedup(const MethodRecords* peer, double ownMeanUs) {
 
 std::string number(double v, const char* fmt) { return std::isnan(v) ? "" : format(fmt, v); }
 
-std::string paramFields(const MethodParams& p) {
-  if (!p.isAdb) return ",,";
-  return format("%.15g", p.pMin) + ',' + std::to_string(p.kMin) + ',' +
-         (std::isfinite(p.budgetUs) ? format("%.15g", p.budgetUs) : "");
-}
-
 std::string csvLine(const SummaryRow& r) {
   return csvField(r.model) + ',' + std::to_string(r.triangles) + ',' + r.method + ',' +
-         paramFields(r.params) + ',' + std::to_string(r.queries) + ',' +
+         methodParamFields(r.params) + ',' + std::to_string(r.queries) + ',' +
          std::to_string(r.overlapping) + ',' + number(r.meanUs, "%.6g") + ',' +
          number(r.p95Us, "%.6g") + ',' + number(r.errorPct, "%.6g") + ',' +
-         number(r.meanConfidence, "%.6g") + ',' + number(r.meanNodePairs, "%.6g") + ',' +
+         number(r.ece, "%.6g") + ',' + number(r.meanConfidence, "%.6g") + ',' +
+         number(r.meanNodePairs, "%.6g") + ',' +
          number(r.speedupVsExact, "%.6g") + ',' + number(r.speedupVsGimpact, "%.6g") + ',' +
          number(r.speedupVsFcl, "%.6g");
 }
 
+// The budget column: the time budget, "none" for ADB without one, empty otherwise (a work
+// budget is in the method's name).
+std::string budgetCell(const MethodParams& p) {
+  if (std::isfinite(p.budgetUs)) return format("%g", p.budgetUs);
+  return p.hasQuality && p.budgetPairs == 0 ? "none" : "";
+}
+
 std::string markdownLine(const SummaryRow& r) {
   const MethodParams& p = r.params;
-  const std::string budget = !p.isAdb ? "" : std::isfinite(p.budgetUs) ? format("%g", p.budgetUs) : "none";
   return "| " + r.model + " | " + std::to_string(r.triangles) + " | " + r.method + " | " +
-         (p.isAdb ? format("%g", p.pMin) : "") + " | " + (p.isAdb ? std::to_string(p.kMin) : "") +
-         " | " + budget + " | " + std::to_string(r.queries) + " | " +
-         std::to_string(r.overlapping) + " | " + number(r.meanUs, "%.1f") + " | " +
-         number(r.p95Us, "%.1f") + " | " + number(r.errorPct, "%.2f") + " | " +
+         (p.hasQuality ? format("%g", p.pMin) : "") + " | " +
+         (p.hasQuality ? std::to_string(p.kMin) : "") + " | " + budgetCell(p) + " | " +
+         std::to_string(r.queries) + " | " + std::to_string(r.overlapping) + " | " +
+         number(r.meanUs, "%.1f") + " | " + number(r.p95Us, "%.1f") + " | " +
+         number(r.errorPct, "%.2f") + " | " + number(r.ece, "%.3f") + " | " +
          number(r.meanConfidence, "%.3f") + " | " + number(r.meanNodePairs, "%.0f") + " | " +
          number(r.speedupVsExact, "%.2f") + " | " + number(r.speedupVsGimpact, "%.2f") + " | " +
          number(r.speedupVsFcl, "%.2f") + " |";
@@ -118,31 +121,41 @@ void finish(std::ofstream& out, const std::string& path) {
 
 }  // namespace
 
-std::vector<SummaryRow> summarize(const ModelResult& result) {
+namespace {
+
+SummaryRow summarizeMethod(const ModelResult& result, const MethodRecords& m) {
   const MethodRecords* exact = findMethod(result, "exact");
-  const MethodRecords* gimpact = findMethod(result, "gimpact");
-  const MethodRecords* fcl = findMethod(result, "fcl");
-  const MethodRecords* reference = exact ? exact : fcl;
-  const auto overlapping = static_cast<std::size_t>(
+  const MethodRecords* reference = referenceOf(result);
+  std::vector<JudgedAnswer> judged;
+  if (reference) judged = judgeAnswers(result, m, *reference);
+  const std::vector<JudgedAnswer>* judgedOrNull = reference ? &judged : nullptr;
+  SummaryRow row;
+  row.model = result.label;
+  row.triangles = result.triangles;
+  row.method = m.name;
+  row.params = m.params;
+  row.queries = m.queries.size();
+  row.overlapping = static_cast<std::size_t>(
       std::count(result.rootsOverlap.begin(), result.rootsOverlap.end(), true));
+  row.meanUs = meanUs(m);
+  row.p95Us = p95Us(m);
+  row.errorPct = errorPct(judgedOrNull);
+  row.ece = ece(m, judgedOrNull);
+  row.meanConfidence = meanConfidence(m);
+  row.meanNodePairs = meanNodePairs(m);
+  row.speedupVsExact = speedup(exact, row.meanUs);
+  row.speedupVsGimpact = speedup(findMethod(result, "gimpact"), row.meanUs);
+  row.speedupVsFcl = speedup(findMethod(result, "fcl"), row.meanUs);
+  return row;
+}
+
+}  // namespace
+
+std::vector<SummaryRow> summarize(const ModelResult& result) {
   std::vector<SummaryRow> rows;
-  for (const MethodRecords& m : result.methods) {
-    SummaryRow row;
-    row.model = result.label;
-    row.triangles = result.triangles;
-    row.method = m.name;
-    row.params = m.params;
-    row.queries = m.queries.size();
-    row.overlapping = overlapping;
-    row.meanUs = meanUs(m);
-    row.p95Us = p95Us(m);
-    row.errorPct = errorPct(result, m, reference);
-    row.meanConfidence = meanConfidence(m);
-    row.meanNodePairs = meanNodePairs(m);
-    row.speedupVsExact = speedup(exact, row.meanUs);
-    row.speedupVsGimpact = speedup(gimpact, row.meanUs);
-    row.speedupVsFcl = speedup(fcl, row.meanUs);
-    rows.push_back(row);
+  for (const MethodRecords& m : result.methods) rows.push_back(summarizeMethod(result, m));
+  if (const std::optional<ModelResult> pooled = pooledAdb(result)) {
+    rows.push_back(summarizeMethod(*pooled, pooled->methods.front()));
   }
   return rows;
 }
@@ -155,18 +168,22 @@ void writeSummaryCsv(const std::string& path, const std::vector<SummaryRow>& row
 }
 
 void writeSummaryMarkdown(const std::string& path, const std::vector<SummaryRow>& rows,
-                          const RunNotes& notes) {
+                          const RunNotes& notes, const std::string& sections) {
   std::ofstream out = openForWriting(path);
   out << "# adb-tradeoff summary\n\n";
   for (const std::string& line : notes.lines) out << line << '\n';
   out << "\n| model | triangles | method | p_min | k_min | budget us | queries | overlapping | "
-         "mean us | p95 us | error % | mean confidence | mean node pairs | vs exact | "
+         "mean us | p95 us | error % | ece | mean confidence | mean node pairs | vs exact | "
          "vs gimpact | vs fcl |\n";
-  out << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  out << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const SummaryRow& r : rows) out << markdownLine(r) << '\n';
   out << "\n`error %`: wrong yes/no answers against the exact mode (FCL when exact did not run) "
-         "among the queries whose root boxes overlap. `vs X`: X's mean time / this row's mean "
-         "time on the same poses (above 1: this row is faster).\n";
+         "among the queries whose root boxes overlap. `ece`: expected calibration error of the "
+         "row's confidence over the same queries (reliability.csv; methods that estimate their "
+         "confidence only). `adb-pooled`: every adb and adb-work setting of the model pooled "
+         "(its queries and overlapping count pooled queries). `vs X`: X's mean time / this "
+         "row's mean time on the same poses (above 1: this row is faster).\n";
+  out << sections;
   finish(out, path);
 }
 

@@ -1,7 +1,9 @@
 // The per-model summary of a run: one row per model, method and parameter combination (mean
 // and p95 time, error rate against the exact answer among queries whose root boxes overlap,
-// mean confidence and node pairs, speedups against each peer run on the same poses),
-// written as summary.csv (fixed columns, read by plot_tradeoff.py) and summary.md.
+// the expected calibration error of methods that estimate their confidence, mean confidence
+// and node pairs, speedups against each peer run on the same poses), plus one "adb-pooled"
+// row over all ADB settings, written as summary.csv (fixed columns, read by
+// plot_tradeoff.py) and summary.md.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +30,7 @@ struct SummaryRow {
   double meanUs = 0.0;
   double p95Us = 0.0;
   double errorPct = 0.0;
+  double ece = 0.0;  ///< NaN for methods without an estimate (calibration.h)
   double meanConfidence = 0.0;
   double meanNodePairs = 0.0;
   double speedupVsExact = 0.0;
@@ -35,7 +38,9 @@ struct SummaryRow {
   double speedupVsFcl = 0.0;
 };
 
-/// The rows of one model. The error reference is "exact" if it ran, else "fcl", else none.
+/// The rows of one model, in method order, then "adb-pooled" when an ADB setting ran (its
+/// queries and overlapping count the pooled queries). The error reference is "exact" if it
+/// ran, else "fcl", else none.
 std::vector<SummaryRow> summarize(const ModelResult& result);
 
 /// Free-form lines printed above the Markdown table (command line, machine, policy).
@@ -45,7 +50,8 @@ struct RunNotes {
 
 /// Writes (truncates) the files; throws std::runtime_error when writing fails.
 void writeSummaryCsv(const std::string& path, const std::vector<SummaryRow>& rows);
+/// `sections`: Markdown appended after the table (the budgets section).
 void writeSummaryMarkdown(const std::string& path, const std::vector<SummaryRow>& rows,
-                          const RunNotes& notes);
+                          const RunNotes& notes, const std::string& sections);
 
 }  // namespace adb::tradeoff

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,7 @@ TEST(Options, DefaultsFollowTheIssue) {
   EXPECT_TRUE(std::isinf(o.budgetsUs[0]));
   EXPECT_EQ(o.budgetsUs[3], 100.0);
   EXPECT_TRUE(o.plots);
+  EXPECT_TRUE(o.budgetPairs.empty());  // no work-budget runs unless asked for
 }
 
 TEST(Options, SourcesKeepCommandLineOrder) {
@@ -72,6 +74,55 @@ TEST(Options, ErrorsNameTheFlagAndTheValue) {
   EXPECT_NE(errorOf({"--model", "knot", "--methods", "adb,adb"}).find("twice"), std::string::npos);
   EXPECT_NE(errorOf({"--model", "knot:2000000"}).find("--model 'knot:2000000'"), std::string::npos);
   EXPECT_NE(errorOf({}).find("--mesh"), std::string::npos);
+}
+
+TEST(Options, BudgetPairsAreAListOfPositiveNodePairCounts) {
+  const Options o = parse({"--model", "knot", "--budget-pairs", "100,20000,7"});
+  EXPECT_EQ(o.budgetPairs, (std::vector<std::uint64_t>{100, 20000, 7}));
+  EXPECT_EQ(parse({"--model", "knot", "--budget-pairs=1"}).budgetPairs,
+            (std::vector<std::uint64_t>{1}));
+}
+
+TEST(Options, BadBudgetPairsGiveOneErrorNamingTheFlagAndTheValue) {
+  for (const char* bad : {"0", "-5", "1.5", "abc", "10,,20", "99999999999999999999"}) {
+    const std::string e = errorOf({"--model", "knot", "--budget-pairs", bad});
+    EXPECT_EQ(e.rfind("--budget-pairs '", 0), 0u) << bad << ": " << e;
+  }
+  EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs", "0"}).find("'0'"), std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs", "10,x"}).find("'x'"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs", ""}).find("--budget-pairs"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs", "5,5"}).find("twice"),
+            std::string::npos);
+  EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs"}).find("--budget-pairs: missing value"),
+            std::string::npos);
+}
+
+TEST(Options, NewMethodsAreOptInAndBudgetedOnesNeedAFiniteBudget) {
+  const Options o = parse({"--model", "knot", "--methods", "exact-cut,box-first,root-boxes,adb"});
+  EXPECT_EQ(o.methods,
+            (std::vector<std::string>{"exact-cut", "box-first", "root-boxes", "adb"}));
+  for (const char* method : {"exact-cut", "box-first"}) {
+    const std::string e =
+        errorOf({"--model", "knot", "--methods", method, "--budget-us", "none"});
+    EXPECT_NE(e.find(std::string("--methods '") + method + "'"), std::string::npos) << e;
+    EXPECT_NE(e.find("--budget-us"), std::string::npos) << e;
+  }
+  // root-boxes needs no budget.
+  EXPECT_EQ(parse({"--model", "knot", "--methods", "root-boxes", "--budget-us", "none"}).methods,
+            (std::vector<std::string>{"root-boxes"}));
+  const std::string unknown = errorOf({"--model", "knot", "--methods", "box-last"});
+  EXPECT_NE(unknown.find("--methods 'box-last'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("root-boxes"), std::string::npos) << unknown;  // the list is complete
+}
+
+TEST(Options, HelpNamesTheNewMethodsAndFlag) {
+  const std::string help = usageText();
+  for (const char* word : {"--budget-pairs", "adb-work:N", "exact-cut", "box-first",
+                           "root-boxes", "reliability.csv", "ece"}) {
+    EXPECT_NE(help.find(word), std::string::npos) << word;
+  }
 }
 
 }  // namespace
