@@ -230,7 +230,7 @@ void writeSamples(const std::string& path, const std::vector<ModelSamples>& fitS
     std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
     std::exit(1);
   }
-  std::fprintf(out, "set,model,checkpoint,f0,f1,f2,f3,f4,f5,truth\n");
+  std::fprintf(out, "set,model,checkpoint,f0,f1,f2,f3,f4,f5,f6,truth\n");
   for (const auto* set : {&fitSet, &checkSet}) {
     for (const ModelSamples& m : *set) {
       for (const Sample& s : m.samples) {

@@ -25,6 +25,7 @@ Evidence randomEvidence(std::mt19937_64& rng) {
   e.bestOpen = e.frontierUnion * unit(rng);
   e.openPairs = static_cast<std::uint32_t>(std::exp(logSum(rng) + 4.0));
   e.collisionPairs = static_cast<std::uint32_t>(unit(rng) * 20.0);
+  e.expectedCells = std::exp(logSum(rng));
   return e;
 }
 
@@ -36,7 +37,7 @@ TEST(CollisionEstimate, AnyEvidenceGivesAProbability) {
   }
   for (double x : {0.0, 1.0, -1.0, 2.0, kInf, -kInf, kNaN, 1e308, -1e308}) {
     Evidence e;
-    e.frontierUnion = e.frontierDoubt = e.prunedDoubt = e.bestOpen = x;
+    e.frontierUnion = e.frontierDoubt = e.prunedDoubt = e.bestOpen = e.expectedCells = x;
     e.openPairs = e.collisionPairs = 0xFFFFFFFFu;
     const double p = collisionProbability(e);
     EXPECT_TRUE(p >= 0.0 && p <= 1.0) << "evidence " << x << " gave " << p;
@@ -75,6 +76,9 @@ TEST(CollisionEstimate, MoreEvidenceNeverLowersTheEstimate) {
       more = base;
       more.collisionPairs += 1;
       EXPECT_GE(p(more), p0);
+      more = base;
+      more.expectedCells *= 2.0;
+      EXPECT_GE(p(more), p0);
     }
   }
 }
@@ -87,9 +91,9 @@ TEST(CollisionEstimate, WeightsTurnFeaturesIntoALogisticModel) {
   e.collisionPairs = 0;          // log1p = 0
   e.openPairs = 0;
   e.bestOpen = 0.25;
-  EXPECT_NEAR(collisionProbability(e, EstimateWeights{-1.0, 2, 7, 5, 3, 0}), 0.5, 1e-9);
-  EXPECT_NEAR(collisionProbability(e, EstimateWeights{std::log(3.0), 0, 0, 0, 0, 0}), 0.75, 1e-12);
-  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 0, 4.0 * std::log(9.0)}), 0.9,
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{-1.0, 2, 7, 5, 3, 0, 0}), 0.5, 1e-9);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{std::log(3.0), 0, 0, 0, 0, 0, 0}), 0.75, 1e-12);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 0, 4.0 * std::log(9.0), 0}), 0.9,
               1e-9);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 1e6, 0, 0, 0, 0}), 1.0, 1e-12);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, -1e6, 0, 0, 0, 0}), 0.0, 1e-12);

@@ -230,6 +230,7 @@ TEST_F(OverlappingTori, ACutExactQueryEstimatesWhatItLeft) {
       EXPECT_TRUE(o.upper >= o.p && o.upper <= 1.0f) << o.p << " " << o.upper;
       evidence.frontierDoubt += o.upper;
       evidence.bestOpen = std::max(evidence.bestOpen, static_cast<double>(o.p));
+      evidence.expectedCells += o.expected;
       miss *= 1.0 - static_cast<double>(o.p);
     }
     evidence.frontierUnion = 1.0 - miss;

@@ -19,10 +19,9 @@ double logOf(double x) {
 
 // Fitted by `build/bin/adb-calibrate --rotations 40` on the six generated models at 20k
 // triangles (docs/probability-model.md gives the run, and how the fit does on meshes it never
-// saw). The union and the best open bound carry no weight: among the states a budget stops a
-// query in, they do not tell colliding poses from the others beyond what the doubt per open
-// pair (the doubt's and the open count's terms together) does.
-constexpr EstimateWeights kFittedWeights{3.31937, 0, 3.78979, 0.0514272, -4.10441, 0};
+// saw). The expected collision cells and the doubt per open pair (the doubt's and the open
+// count's terms together) decide; the union and the best open bound add nothing beyond them.
+constexpr EstimateWeights kFittedWeights{-5.78558, 0, 1.659, 0, -2.25839, 0, 2.12397};
 
 }  // namespace
 
@@ -32,7 +31,8 @@ std::array<double, kEstimateFeatures> estimateFeatures(const Evidence& e) {
           logOf(e.frontierDoubt + e.prunedDoubt),
           std::log1p(static_cast<double>(e.collisionPairs)),
           std::log1p(static_cast<double>(e.openPairs)),
-          unit(e.bestOpen)};
+          unit(e.bestOpen),
+          logOf(e.expectedCells)};
 }
 
 double collisionProbability(const Evidence& e, const EstimateWeights& w) {

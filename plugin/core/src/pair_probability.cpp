@@ -97,9 +97,10 @@ PairEstimate estimateOverlapping(const PosedNode& a, int depthA, const PosedNode
                : cellsB.density;
   e.sA = std::min(e.s, roundCount(rhoA * e.s, kMaxBins));
   e.sB = std::min(e.s, roundCount(rhoB * e.s, kMaxBins));
-  // E[X] = v w / u before rounding: a pair that rounding prunes (s_A or s_B = 0) keeps this
-  // much doubt in the confidence (Markov: Pr[X >= 1] <= E[X]).
-  e.expected = std::min(1.0, rhoA * rhoB * e.s);
+  // E[X] = v w / u before rounding: how many collision cells the pair is expected to hold.
+  // Capped at 1 it bounds Pr[X >= 1] of a pair that rounding prunes (Markov); uncapped it
+  // says how much the pair overlaps, which Pr[X >= 1] (saturating at 1) cannot.
+  e.expected = rhoA * rhoB * e.s;
   if (e.sA == 0 || e.sB == 0) return e;  // no possible collision cell on one side: p = 0
   const double lb = cellIntersectionBound(depthA, depthB, maxDepthA, maxDepthB);
   const CollisionEstimate c = estimateCollision(e.s, e.sA, e.sB, lb);

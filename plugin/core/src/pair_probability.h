@@ -84,7 +84,7 @@ struct PairEstimate {
   bool overlap = false;
   double lower = 0.0;  // Eq. 3: the priority and the acceptance test
   double upper = 0.0;  // Pr[X >= 1]
-  double expected = 0.0;  // E[X] before rounding: bounds Pr[X >= 1] of a pair pruned by it
+  double expected = 0.0;  // E[X] before rounding, uncapped (min(1, E[X]) bounds Pr[X >= 1])
   int s = 0, sA = 0, sB = 0;
 };
 

@@ -60,7 +60,7 @@ bool heapLess(const Entry& x, const Entry& y) { return x.p < y.p; }
 // possible collision cell (so Pr[X >= 1] = 0 for boxes that do overlap), E[X] before
 // rounding, as for a pruned pair (Markov).
 double doubtOf(const detail::PairEstimate& est) {
-  return est.upper > 0.0 ? est.upper : est.expected;
+  return est.upper > 0.0 ? est.upper : std::min(1.0, est.expected);
 }
 
 // Whether boxes [loX, hiX] and [loY, hiY] are separated along some axis by more than `gap`.
@@ -112,7 +112,8 @@ struct Traversal::Impl {
   QueryResult result;
   bool started = false;  // the roots have been tested
   bool finished = false;
-  double prunedMass = 0.0;    // sum of E[X] over the pairs pruned for p = 0
+  double prunedMass = 0.0;    // sum of min(1, E[X]) over the pairs pruned for p = 0
+  double prunedExpected = 0.0;  // sum of E[X] over them
   double bestAccepted = 0.0;  // largest p of the accepted pairs
   bool exactHit = false;
 
@@ -139,7 +140,7 @@ struct Traversal::Impl {
     regionHits.clear();
     result = QueryResult{};
     started = finished = exactHit = false;
-    prunedMass = bestAccepted = 0.0;
+    prunedMass = prunedExpected = bestAccepted = 0.0;
     work = StepWork{};
   }
 
@@ -318,7 +319,7 @@ struct Traversal::Impl {
         finish(false, 1.0, StopReason::Completed);
         return;
       }
-      heap.push_back(Entry{1.0f, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
+      heap.push_back(Entry{1.0f, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0, 0.0f});
     }
     while (!heap.empty()) {
       if (regionFull(heap.back().region)) {  // skipping costs no budget
@@ -373,7 +374,8 @@ struct Traversal::Impl {
           depth[k] = depth[k - 1];
         }
         kids[k] = Entry{1.0f, 1.0f, x.ca[i], x.cb[j], kNoRegion,
-                        static_cast<std::uint16_t>(x.depthA), static_cast<std::uint16_t>(x.depthB)};
+                        static_cast<std::uint16_t>(x.depthA), static_cast<std::uint16_t>(x.depthB),
+                        0.0f};
         depth[k] = static_cast<float>(d);
       }
     }
@@ -387,7 +389,8 @@ struct Traversal::Impl {
   void push(const detail::PairEstimate& est, std::uint32_t ia, std::uint32_t ib,
             std::uint32_t region, int da, int db) {
     const Entry e{static_cast<float>(est.lower), static_cast<float>(doubtOf(est)), ia, ib, region,
-                  static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db)};
+                  static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db),
+                  static_cast<float>(est.expected)};
     heap.push_back(e);
     std::push_heap(heap.begin(), heap.end(), heapLess);
   }
@@ -405,7 +408,8 @@ struct Traversal::Impl {
       // in the queue they are popped first anyway, and the evidence needs their estimate
       // (Eq. 3 is 0 at depth 0, where LB = 0).
       heap.push_back(Entry{static_cast<float>(root.lower), static_cast<float>(doubtOf(root)), 0, 0,
-                           childRegion(kNoRegion, 0, 0), 0, 0});
+                           childRegion(kNoRegion, 0, 0), 0, 0,
+                           static_cast<float>(root.expected)});
     }
     while (!heap.empty()) {
       if (!budgetLeft()) {
@@ -442,7 +446,8 @@ struct Traversal::Impl {
         const detail::PairEstimate est = detail::estimateOverlapping(
             pairs.a(i), x.depthA, pairs.b(j), x.depthB, a.maxDepth, b.maxDepth);
         if (!(est.lower > 0.0) && settings.pruneImprobable) {  // paper: only p > 0
-          prunedMass += est.expected;
+          prunedMass += std::min(1.0, est.expected);
+          prunedExpected += est.expected;
           continue;
         }
         const bool leaves =
@@ -507,7 +512,9 @@ struct Traversal::Impl {
       miss *= 1.0 - static_cast<double>(e.p);
       ev.frontierDoubt += e.upper;
       ev.bestOpen = std::max(ev.bestOpen, static_cast<double>(e.p));
+      ev.expectedCells += e.expected;
     }
+    ev.expectedCells += prunedExpected;
     ev.frontierUnion = 1.0 - miss;
     ev.prunedDoubt = prunedMass;
     ev.openPairs = static_cast<std::uint32_t>(std::min<std::size_t>(heap.size(), 0xFFFFFFFFu));
@@ -543,6 +550,7 @@ struct Traversal::Impl {
           detail::estimatePair(a, e.a, e.depthA, b, e.b, e.depthB, frame);
       e.p = static_cast<float>(est.lower);
       e.upper = static_cast<float>(doubtOf(est));
+      e.expected = static_cast<float>(est.expected);
     }
   }
 

@@ -24,19 +24,20 @@ struct Evidence {
   double bestOpen = 0.0;       ///< the largest Eq. 3 bound among the open pairs
   std::uint32_t openPairs = 0;
   std::uint32_t collisionPairs = 0;  ///< pairs accepted with p > p_min (the paper's k)
+  double expectedCells = 0.0;  ///< sum of E[X] (collision cells) over open and pruned pairs
 };
 
-inline constexpr int kEstimateFeatures = 6;
+inline constexpr int kEstimateFeatures = 7;
 using EstimateWeights = std::array<double, kEstimateFeatures>;
 
 /// The model's features: 1, frontierUnion, log(frontierDoubt + prunedDoubt + 1e-3),
-/// log(1 + collisionPairs), log(1 + openPairs), bestOpen; each clamped so that every
-/// evidence, however extreme, gives finite features.
+/// log(1 + collisionPairs), log(1 + openPairs), bestOpen, log(expectedCells + 1e-3); each
+/// clamped so that every evidence, however extreme, gives finite features.
 std::array<double, kEstimateFeatures> estimateFeatures(const Evidence& e);
 
 /// Which features count as evidence for a collision: their weights are kept >= 0.
-inline constexpr std::array<bool, kEstimateFeatures> kEvidenceFeature{false, true, true,
-                                                                       true, false, true};
+inline constexpr std::array<bool, kEstimateFeatures> kEvidenceFeature{
+    false, true, true, true, false, true, true};
 
 /// sigmoid(w . estimateFeatures(e)), in [0, 1].
 double collisionProbability(const Evidence& e, const EstimateWeights& w);

@@ -113,6 +113,7 @@ struct OpenPair {
   std::uint32_t a, b;      ///< node indices in tree A and tree B
   std::uint32_t region;    ///< contact region (QuerySettings::hitsPerRegion) or kNoRegion
   std::uint16_t depthA, depthB;
+  float expected;          ///< E[X]: the collision cells the model expects the pair to hold
   static constexpr std::uint32_t kNoRegion = 0xFFFFFFFFu;
 };
 
