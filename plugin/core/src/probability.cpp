@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace adb {
@@ -135,7 +137,14 @@ double pointProbability(const FactorialTables& f, int u, int v, int w, int t) {
     d *= f.mantissa[n];
     e -= f.exponent[n];
   }
-  return std::ldexp(m / d, e);
+  // m / d is in [1/32, 16) and the probability is <= 1, so e <= 5. Below the normal range the
+  // term is under 2^-1000: 0 for the tails it feeds. 2^e from its bits: ldexp is a library
+  // call, and this runs for every node pair.
+  if (e < -1000) return 0.0;
+  const std::uint64_t bits = static_cast<std::uint64_t>(e + 1023) << 52;
+  double scale = 0.0;
+  std::memcpy(&scale, &bits, sizeof scale);
+  return m / d * scale;
 }
 
 }  // namespace
