@@ -452,6 +452,18 @@ TEST(HardCaseBadInput, NonFiniteOrSkewedPosesAreRejected) {
   p = Pose{};
   p.rotation *= 2.0;  // a scale is not a rotation
   EXPECT_NE(message(p).find("not orthonormal"), std::string::npos);
+  // Off orthonormal by about 2.4e-6: the message shows the number, not "0.000002".
+  p = Pose{};
+  p.rotation(0, 0) += 1.2e-6;
+  EXPECT_NE(message(p).find("= 2.4"), std::string::npos) << message(p);
+  EXPECT_NE(message(p).find("e-06)"), std::string::npos) << message(p);
+  // Beyond 1e150 the distance between tree origins overflows when squared and the query
+  // would cull nothing: refused, with the number.
+  p = Pose{};
+  p.translation.x() = 1e160;
+  EXPECT_NE(message(p).find("translation of 1e+160"), std::string::npos) << message(p);
+  p.translation.x() = 1e149;  // far, but supported
+  EXPECT_EQ(message(p), "");
   // A rotation built from a quaternion in double is orthonormal to rounding: accepted.
   EXPECT_EQ(message(Pose::fromQuaternion(Eigen::Quaterniond(0.3, 0.1, -0.7, 0.2), Vec3(1, 2, 3))),
             "");

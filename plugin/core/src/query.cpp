@@ -38,6 +38,7 @@
 #include <string>
 
 #include "adb/core/triangle_test.h"
+#include "format_number.h"
 #include "pair_probability.h"
 
 namespace adb {
@@ -79,9 +80,15 @@ void validatePose(const Pose& p, const char* which) {
     throw PoseError(std::string("collide: pose ") + which + " " + why);
   };
   if (!p.rotation.allFinite() || !p.translation.allFinite()) fail("has a non-finite entry");
+  if (p.translation.cwiseAbs().maxCoeff() > detail::kMaxCoordinate) {
+    fail("has a translation of " + detail::formatNumber(p.translation.cwiseAbs().maxCoeff()) +
+         "; poses are supported up to " + detail::formatNumber(detail::kMaxCoordinate) +
+         " from the origin");
+  }
   const double off = (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
   if (off > kOrthonormalTolerance) {
-    fail("has a rotation that is not orthonormal (|R^T R - I| = " + std::to_string(off) + ")");
+    fail("has a rotation that is not orthonormal (|R^T R - I| = " + detail::formatNumber(off) +
+         ")");
   }
 }
 
@@ -605,7 +612,7 @@ const char* toString(StopReason r) {
 
 void validate(const QuerySettings& s) {
   if (!(s.pMin >= 0.0 && s.pMin <= 1.0)) {
-    throw SettingsError("QuerySettings::pMin is " + std::to_string(s.pMin) +
+    throw SettingsError("QuerySettings::pMin is " + detail::formatNumber(s.pMin) +
                         "; it must be in [0, 1]");
   }
   if (s.kMin < 1) {
@@ -617,7 +624,7 @@ void validate(const QuerySettings& s) {
                         "; it must be >= 0");
   }
   if (std::isnan(s.budgetMicros) || s.budgetMicros < 0.0) {
-    throw SettingsError("QuerySettings::budgetMicros is " + std::to_string(s.budgetMicros) +
+    throw SettingsError("QuerySettings::budgetMicros is " + detail::formatNumber(s.budgetMicros) +
                         "; it must be >= 0 (infinity for no budget)");
   }
 }

@@ -10,23 +10,13 @@
 #include <string>
 
 #include "cell_count.h"
+#include "format_number.h"
 #include "tree_builder.h"
 
 namespace adb {
 namespace {
 
-// A double for an error message: %g, so that 1e-15 reads "1e-15" and 1e300 "1e+300"
-// (std::to_string prints "0.000000" and 300 digits). More digits only where %g's 6 would not
-// round-trip, so that 1.0000001 is not shown as the limit "1" it exceeds.
-std::string formatNumber(double x) {
-  char text[32];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, x);
-    // Non-finite values (NaN, inf) never compare equal: they print at 6 digits.
-    if (!std::isfinite(x) || std::strtod(text, nullptr) == x) break;
-  }
-  return text;
-}
+using detail::formatNumber;
 
 void validate(const BuildSettings& s) {
   if (s.gridResolution < 1 || s.gridResolution > 32) {
@@ -48,36 +38,28 @@ void validate(const BuildSettings& s) {
 constexpr double kMinMeshExtent = 1e-12;
 constexpr double kMaxMeshExtent = 1e12;
 
-// Largest coordinate magnitude of a mesh. The tree itself holds its origin in double, but the
-// origin's arithmetic must stay finite: the box centre (lo + hi) / 2 overflows near DBL_MAX,
-// and a query squares the distance between two tree origins (|R origin + t|^2 in the relative
-// frame), which overflows past 1.3e154 and then culls nothing. 1e150 leaves room for poses
-// whose translations exceed the mesh's own coordinates 1000-fold. It costs no real mesh: a
-// shape with a supported extent (<= 1e12) resolves in double only within ~1e28 of the origin,
-// so beyond that only points, or meshes flat along the far axis, were left.
-constexpr double kMaxMeshCoordinate = 1e150;
-
-// Rejects a mesh whose used vertices reach beyond kMaxMeshCoordinate, naming the first one.
+// Rejects a mesh whose used vertices reach beyond detail::kMaxCoordinate (format_number.h says
+// why), naming the first one.
 void validateCoordinates(const TriangleMesh& mesh) {
   const Aabb& b = mesh.bounds();  // over the vertices that triangles use
-  if (std::max(b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()) <= kMaxMeshCoordinate) {
+  if (std::max(b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff()) <= detail::kMaxCoordinate) {
     return;
   }
   for (const Triangle& t : mesh.triangles()) {
     for (std::uint32_t i : t) {
       const Vec3& v = mesh.vertices()[i];
-      if (v.cwiseAbs().maxCoeff() <= kMaxMeshCoordinate) continue;
+      if (v.cwiseAbs().maxCoeff() <= detail::kMaxCoordinate) continue;
       throw MeshError(mesh.name() + ": vertex " + std::to_string(i) + " is at (" +
                       formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " +
                       formatNumber(v.z()) + "); an AdbTree supports coordinates up to " +
-                      formatNumber(kMaxMeshCoordinate) +
+                      formatNumber(detail::kMaxCoordinate) +
                       " in magnitude (move the mesh nearer the origin)");
     }
   }
 }
 
 void validateExtent(const TriangleMesh& mesh) {
-  // Finite: validateCoordinates bounds both ends by kMaxMeshCoordinate.
+  // Finite: validateCoordinates bounds both ends by detail::kMaxCoordinate.
   const double extent = mesh.bounds().extent().maxCoeff();
   // Every vertex at one point: all triangles degenerate, handled by every stage (the local
   // frame puts the point at 0, so no float conversion is at stake).

@@ -210,8 +210,8 @@ class PoseError : public std::invalid_argument {
 /// Tests tree `a` at `poseA` against tree `b` at `poseB` (poses map each mesh's own
 /// coordinates to the world). Throws SettingsError for invalid settings (pMin outside [0, 1],
 /// kMin < 1, NaN or negative budget, negative regionDepth) and PoseError for a bad pose
-/// (non-finite, or a rotation off orthonormal by more than 1e-6); never throws for a valid
-/// call.
+/// (non-finite, a translation beyond 1e150, or a rotation off orthonormal by more than 1e-6);
+/// never throws for a valid call.
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch);
 

@@ -126,7 +126,7 @@ class AdbTree {
  public:
   /// Builds the hierarchy and its cell statistics. Throws SettingsError on bad settings and
   /// MeshError for a mesh more than 1e12 or less than 1e-12 units across (boxes and areas
-  /// are stored in float).
+  /// are stored in float) or with a vertex more than 1e150 from the origin.
   explicit AdbTree(const TriangleMesh& mesh, const BuildSettings& settings = {});
 
   const NodeArray<Node>& nodes() const { return m_nodes; }
