@@ -2,9 +2,10 @@
 // models and checks it on meshes it never saw.
 //
 // For every benchmark pose (Zachmann's procedure: distances 0.4 to 2.0, random rotations) whose
-// root boxes overlap, each ADB quality setting is run as one Traversal stopped at work budgets
-// 1, 2, 4, ... node pairs; every budget stop is a sample (the estimate answers those): the
-// evidence's features and the exact answer. Work budgets make the fit reproducible; a time budget stops
+// root boxes overlap, each ADB quality setting is run as one Traversal stepped towards work
+// budgets of 1, 2, 4, ... node pairs (a step makes at least one expansion, so the states sit
+// at 1, 5, 9, 13, 29, ... node pairs); every budget stop is a sample (the estimate answers
+// those): the evidence's features and the exact answer. Work budgets make the fit reproducible; a time budget stops
 // a traversal in one of the same states. The fit is a logistic regression (Newton's method)
 // whose weights on evidence features are held >= 0, each generated model weighted equally.
 // It prints the weights as the C++ line collision_estimate.cpp holds and the expected
@@ -59,9 +60,12 @@ void sampleTraversal(const adb::AdbTree& tree, const adb::PosePair& p, const Qua
   s.kMin = q.kMin;
   adb::Traversal t(tree, p.a, tree, p.b, s);
   for (int c = 0; c < kCheckpoints; ++c) {
+    // A step makes at least one expansion, so the traversal may already be past this budget:
+    // its state was sampled then, and is not counted twice.
     const std::uint64_t target = std::uint64_t{1} << c;
     const std::uint64_t done = t.result().nodePairs;
-    if (target > done || done == 0) t.step(adb::StepBudget{target - std::min(target, done)});
+    if (target <= done) continue;
+    t.step(adb::StepBudget{target - done});
     // The estimate answers budget stops only: a query that ended (certain, at k_min, or with
     // its queue emptied by pruning) is not a sample.
     if (t.done()) return;
@@ -89,9 +93,7 @@ ModelSamples collect(const std::string& name, const adb::TriangleMesh& mesh, int
 }
 
 double predict(const Features& f, const adb::EstimateWeights& w) {
-  double z = 0.0;
-  for (int i = 0; i < adb::kEstimateFeatures; ++i) z += w[i] * f[i];
-  return z >= 0.0 ? 1.0 / (1.0 + std::exp(-z)) : std::exp(z) / (1.0 + std::exp(z));
+  return adb::logisticEstimate(f, w);
 }
 
 // The weighted log-loss the fit minimises (each model's samples weigh 1 in all).
@@ -107,57 +109,89 @@ double logLoss(const std::vector<ModelSamples>& models, const adb::EstimateWeigh
   return loss;
 }
 
-// Logistic regression by Newton's method with step halving (near-separable data make the plain
-// step overshoot); evidence weights that would go negative are held at 0 (an active set), so
-// that more evidence never lowers the estimate.
+// The gradient of the weighted log-loss at w.
+Eigen::VectorXd lossGradient(const std::vector<ModelSamples>& models, const adb::EstimateWeights& w) {
+  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(adb::kEstimateFeatures);
+  for (const ModelSamples& m : models) {
+    const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
+    for (const Sample& s : m.samples) {
+      const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), adb::kEstimateFeatures);
+      gradient += weight * (predict(s.f, w) - (s.truth ? 1.0 : 0.0)) * x;
+    }
+  }
+  return gradient;
+}
+
+// Newton's method with step halving (near-separable data make the plain step overshoot) on
+// the free weights; the held ones stay at 0.
+void newton(const std::vector<ModelSamples>& models, const std::array<bool, adb::kEstimateFeatures>& free,
+            adb::EstimateWeights& w) {
+  constexpr int n = adb::kEstimateFeatures;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    Eigen::MatrixXd hessian = Eigen::MatrixXd::Identity(n, n) * 1e-6;  // a little ridge
+    for (const ModelSamples& m : models) {
+      const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
+      for (const Sample& s : m.samples) {
+        const double p = predict(s.f, w);
+        const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), n);
+        hessian += weight * std::max(p * (1.0 - p), 1e-12) * x * x.transpose();
+      }
+    }
+    Eigen::VectorXd gradient = lossGradient(models, w);
+    for (int i = 0; i < n; ++i) {
+      if (free[i]) continue;
+      gradient[i] = 0.0;
+      hessian.row(i).setZero();
+      hessian.col(i).setZero();
+      hessian(i, i) = 1.0;
+    }
+    const Eigen::VectorXd delta = hessian.ldlt().solve(gradient);
+    const double before = logLoss(models, w);
+    double step = 1.0;
+    bool improved = false;
+    adb::EstimateWeights next = w;
+    for (int halving = 0; halving < 40 && !improved; ++halving, step *= 0.5) {
+      for (int i = 0; i < n; ++i) next[i] = w[i] - step * delta[i];
+      improved = logLoss(models, next) <= before;
+    }
+    if (!improved) return;  // no step lowers the loss: converged to rounding
+    w = next;
+    if (step * delta.norm() < 1e-10) return;
+  }
+}
+
+// Logistic regression whose evidence weights are >= 0 (more evidence never lowers the
+// estimate), by an active set: fit the free weights; hold the most negative evidence weight
+// at 0; release a held weight whose gradient says the loss falls as it grows (the KKT
+// condition); repeat until the set is stable. Collinear features (the union, the doubt and
+// the best open bound move together) are why one weight at a time.
 adb::EstimateWeights fit(const std::vector<ModelSamples>& models) {
   constexpr int n = adb::kEstimateFeatures;
   adb::EstimateWeights w{};
   std::array<bool, n> free{};
   free.fill(true);
-  for (int round = 0; round < n; ++round) {
-    for (int iteration = 0; iteration < 50; ++iteration) {
-      Eigen::MatrixXd hessian = Eigen::MatrixXd::Identity(n, n) * 1e-6;  // a little ridge
-      Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
-      for (const ModelSamples& m : models) {
-        const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
-        for (const Sample& s : m.samples) {
-          const double p = predict(s.f, w);
-          const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), n);
-          gradient += weight * (p - (s.truth ? 1.0 : 0.0)) * x;
-          hessian += weight * std::max(p * (1.0 - p), 1e-12) * x * x.transpose();
-        }
-      }
-      for (int i = 0; i < n; ++i) {
-        if (free[i]) continue;
-        gradient[i] = 0.0;
-        hessian.row(i).setZero();
-        hessian.col(i).setZero();
-        hessian(i, i) = 1.0;
-      }
-      const Eigen::VectorXd delta = hessian.ldlt().solve(gradient);
-      const double before = logLoss(models, w);
-      double step = 1.0;
-      adb::EstimateWeights next = w;
-      for (int halving = 0; halving < 40; ++halving, step *= 0.5) {
-        for (int i = 0; i < n; ++i) next[i] = w[i] - step * delta[i];
-        if (logLoss(models, next) <= before) break;
-      }
-      w = next;
-      if (step * delta.norm() < 1e-10) break;
-    }
-    // Collinear evidence features (the union, the doubt and the best open bound move
-    // together) can take negative weights in an unconstrained fit: hold the most negative at 0
-    // and refit, one at a time.
+  for (int round = 0; round < 4 * n; ++round) {
+    newton(models, free, w);
     int worst = -1;
     for (int i = 0; i < n; ++i) {
       if (free[i] && adb::kEvidenceFeature[i] && w[i] < 0.0 && (worst < 0 || w[i] < w[worst])) {
         worst = i;
       }
     }
-    if (worst < 0) break;
-    free[worst] = false;
-    w[worst] = 0.0;
+    if (worst >= 0) {
+      free[worst] = false;
+      w[worst] = 0.0;
+      continue;
+    }
+    const Eigen::VectorXd gradient = lossGradient(models, w);
+    int release = -1;
+    for (int i = 0; i < n; ++i) {
+      if (!free[i] && gradient[i] < -1e-9 && (release < 0 || gradient[i] < gradient[release])) {
+        release = i;
+      }
+    }
+    if (release < 0) break;  // KKT holds: every held weight wants to stay at 0
+    free[release] = true;
   }
   return w;
 }

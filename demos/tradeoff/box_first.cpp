@@ -10,6 +10,9 @@
 #include "root_overlap.h"
 
 namespace adb::tradeoff {
+namespace {
+using Clock = std::chrono::steady_clock;
+}  // namespace
 
 // Tree B's local frame seen from tree A's (both trees are the model's one tree, posed twice).
 struct BoxFirstMethod::Frame {
@@ -20,9 +23,34 @@ struct BoxFirstMethod::Frame {
   Vec3 bToA(const Vec3& x) const { return rBA * x + tBA; }
 };
 
-namespace {
+// The time budget of one query, checked by the core's rule (plugin/core/src/query.cpp) so
+// that box-first and ADB overshoot a budget alike: the clock is read once kClockWork units
+// of work have accumulated (a short query is not dominated by clock reads) and at the first
+// check (a budget of 0 stops before any work). Triangle tests count: a leaf pair may run up
+// to 15 x 15 of them, far more than one pair test.
+struct BoxFirstMethod::Budget {
+  Clock::time_point start = Clock::now();
+  double micros;
+  bool timed = std::isfinite(micros);
+  bool firstCheck = true;
+  std::uint32_t workSinceClock = 0;
 
-using Clock = std::chrono::steady_clock;
+  explicit Budget(double budgetUs) : micros(budgetUs) {}
+
+  void countTriangleTest() { ++workSinceClock; }
+
+  // Before a pair is popped: counts its work; true when the budget is spent.
+  bool spent() {
+    if (!timed) return false;
+    workSinceClock += kWorkPerPair;
+    if (workSinceClock < kClockWork && !firstCheck) return false;
+    workSinceClock = 0;
+    firstCheck = false;
+    return std::chrono::duration<double, std::micro>(Clock::now() - start).count() >= micros;
+  }
+};
+
+namespace {
 
 // Rounding of the transform, relative to the scene's size (the core uses the same 1e-12):
 // boxes that touch must not be separated by it.
@@ -33,21 +61,37 @@ constexpr double kRelativeSlack = 1e-12;
 // have said "apart" too (the core's leaf test uses the same rule).
 constexpr double kTriangleGap = 1e-9;
 
-struct Box {
-  Vec3 c, h;  // centre and half extents in the node's own (tree-local) frame
+// A node's box, centre and half extents in its own tree-local frame, and the axis-aligned
+// box of it in the other tree's frame.
+struct MappedBox {
+  Vec3 c, h;
+  Vec3 cOther, hOther;
 };
 
-Box boxOf(const Node& n) {
-  return Box{0.5 * (n.boxHi() + n.boxLo()), 0.5 * (n.boxHi() - n.boxLo())};
-}
-
-double microsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+// `n`'s box mapped by x -> r x + t (absR = |r| maps half extents to the AABB's).
+MappedBox mapBox(const Node& n, const Mat3& r, const Mat3& absR, const Vec3& t) {
+  MappedBox m;
+  m.c = 0.5 * (n.boxHi() + n.boxLo());
+  m.h = 0.5 * (n.boxHi() - n.boxLo());
+  m.cOther = r * m.c + t;
+  m.hOther = absR * m.h;
+  return m;
 }
 
 // Whether the intervals (centre c, half extent h) and (c2, h2) are apart on some axis.
 bool apart(const Vec3& c, const Vec3& h, const Vec3& c2, const Vec3& h2, double slack) {
   return ((c2 - c).cwiseAbs().array() > (h + h2).array() + slack).any();
+}
+
+// The queue key of A's box `a` and B's box `b`: their overlap volume in A's frame, or -1
+// when a face axis of either box separates them.
+double overlapKey(const MappedBox& a, const MappedBox& b, double slack) {
+  if (apart(a.c, a.h, b.cOther, b.hOther, slack)) return -1.0;
+  if (apart(b.c, b.h, a.cOther, a.hOther, slack)) return -1.0;
+  // Overlap volume in A's frame; >= 0 (touching boxes, within the slack, give 0).
+  const Vec3 lo = (a.c - a.h).cwiseMax(b.cOther - b.hOther);
+  const Vec3 hi = (a.c + a.h).cwiseMin(b.cOther + b.hOther);
+  return (hi - lo).cwiseMax(Vec3::Zero()).prod();
 }
 
 int children(const Node& n, std::uint32_t self, std::uint32_t out[2]) {
@@ -60,9 +104,8 @@ int children(const Node& n, std::uint32_t self, std::uint32_t out[2]) {
   return 2;
 }
 
-bool triangleBoxesApart(const Vec3 (&x)[3], const Vec3 (&y)[3], double gap) {
-  const Vec3 loX = x[0].cwiseMin(x[1]).cwiseMin(x[2]), hiX = x[0].cwiseMax(x[1]).cwiseMax(x[2]);
-  const Vec3 loY = y[0].cwiseMin(y[1]).cwiseMin(y[2]), hiY = y[0].cwiseMax(y[1]).cwiseMax(y[2]);
+// Whether boxes [loX, hiX] and [loY, hiY] are separated along some axis by more than `gap`.
+bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& hiY, double gap) {
   return (loX.array() > hiY.array() + gap).any() || (loY.array() > hiX.array() + gap).any();
 }
 
@@ -103,43 +146,37 @@ BoxFirstMethod::Frame BoxFirstMethod::frameBetween(const Pose& a, const Pose& b)
   return f;
 }
 
-double BoxFirstMethod::overlapKey(std::uint32_t ia, std::uint32_t ib, const Frame& f) const {
-  const Box a = boxOf(m_tree->nodes()[ia]);
-  const Box b = boxOf(m_tree->nodes()[ib]);
-  const Box bInA{f.bToA(b.c), f.absBA * b.h};  // the AABB of B's box in A's frame
-  if (apart(a.c, a.h, bInA.c, bInA.h, f.slack)) return -1.0;
-  if (apart(b.c, b.h, f.rAB * a.c + f.tAB, f.absAB * a.h, f.slack)) return -1.0;
-  // Overlap volume in A's frame; >= 0 (touching boxes, within the slack, give 0).
-  const Vec3 lo = (a.c - a.h).cwiseMax(bInA.c - bInA.h);
-  const Vec3 hi = (a.c + a.h).cwiseMin(bInA.c + bInA.h);
-  return (hi - lo).cwiseMax(Vec3::Zero()).prod();
-}
-
-bool BoxFirstMethod::leavesIntersect(const Node& na, const Node& nb, const Frame& f) const {
+bool BoxFirstMethod::leavesIntersect(const Node& na, const Node& nb, const Frame& f,
+                                     Budget& budget) const {
   const auto& v = m_tree->localVertices();
   const auto& t = m_tree->triangles();
-  Vec3 mapped[15][3];  // B's triangles in A's frame (a leaf holds at most 15)
+  // B's triangles mapped into A's frame, and the boxes of both leaves' triangles there, once
+  // per leaf pair (a leaf holds at most 15; the slots a leaf does not use stay unwritten).
+  Vec3 mapped[15][3];
+  Vec3 loA[15], hiA[15], loB[15], hiB[15];
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
-    for (int k = 0; k < 3; ++k) {
-      mapped[j][k] = f.bToA(v[t[nb.firstTriangle() + j][k]]);
-      lo = lo.cwiseMin(mapped[j][k]);
-      hi = hi.cwiseMax(mapped[j][k]);
-    }
+    for (int k = 0; k < 3; ++k) mapped[j][k] = f.bToA(v[t[nb.firstTriangle() + j][k]]);
+    loB[j] = mapped[j][0].cwiseMin(mapped[j][1]).cwiseMin(mapped[j][2]);
+    hiB[j] = mapped[j][0].cwiseMax(mapped[j][1]).cwiseMax(mapped[j][2]);
+    lo = lo.cwiseMin(loB[j]);
+    hi = hi.cwiseMax(hiB[j]);
   }
   for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      lo = lo.cwiseMin(v[t[na.firstTriangle() + i][k]]);
-      hi = hi.cwiseMax(v[t[na.firstTriangle() + i][k]]);
-    }
+    const Triangle& ta = t[na.firstTriangle() + i];
+    loA[i] = v[ta[0]].cwiseMin(v[ta[1]]).cwiseMin(v[ta[2]]);
+    hiA[i] = v[ta[0]].cwiseMax(v[ta[1]]).cwiseMax(v[ta[2]]);
+    lo = lo.cwiseMin(loA[i]);
+    hi = hi.cwiseMax(hiA[i]);
   }
   const double gap = kTriangleGap * (hi - lo).maxCoeff();
   for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
     const Triangle& ta = t[na.firstTriangle() + i];
-    const Vec3 own[3] = {v[ta[0]], v[ta[1]], v[ta[2]]};
     for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
-      if (triangleBoxesApart(own, mapped[j], gap)) continue;
-      if (trianglesIntersect(own[0], own[1], own[2], mapped[j][0], mapped[j][1], mapped[j][2])) {
+      if (boxesApart(loA[i], hiA[i], loB[j], hiB[j], gap)) continue;
+      budget.countTriangleTest();
+      if (trianglesIntersect(v[ta[0]], v[ta[1]], v[ta[2]], mapped[j][0], mapped[j][1],
+                             mapped[j][2])) {
         return true;
       }
     }
@@ -147,36 +184,46 @@ bool BoxFirstMethod::leavesIntersect(const Node& na, const Node& nb, const Frame
   return false;
 }
 
-bool BoxFirstMethod::expand(const Entry& e, const Frame& f, std::int64_t& nodePairs) {
-  const Node& na = m_tree->nodes()[e.a];
-  const Node& nb = m_tree->nodes()[e.b];
-  if (na.isLeaf() && nb.isLeaf()) return leavesIntersect(na, nb, f);
+void BoxFirstMethod::pushOverlappingChildren(const Entry& e, const Frame& f,
+                                             std::int64_t& nodePairs) {
   std::uint32_t ca[2], cb[2];
-  const int countA = children(na, e.a, ca), countB = children(nb, e.b, cb);
+  const int countA = children(m_tree->nodes()[e.a], e.a, ca);
+  const int countB = children(m_tree->nodes()[e.b], e.b, cb);
+  // Every child's box mapped into the other frame first: a child meets both children of the
+  // other node, and the mapping is most of a pair test's cost.
+  MappedBox a[2], b[2];
+  for (int i = 0; i < countA; ++i) a[i] = mapBox(m_tree->nodes()[ca[i]], f.rAB, f.absAB, f.tAB);
+  for (int j = 0; j < countB; ++j) b[j] = mapBox(m_tree->nodes()[cb[j]], f.rBA, f.absBA, f.tBA);
   for (int i = 0; i < countA; ++i) {
     for (int j = 0; j < countB; ++j) {
       ++nodePairs;
-      const double key = overlapKey(ca[i], cb[j], f);
+      const double key = overlapKey(a[i], b[j], f.slack);
       if (key < 0.0) continue;
       m_heap.push_back(Entry{key, ca[i], cb[j]});
       std::push_heap(m_heap.begin(), m_heap.end(), heapLess);
     }
   }
+}
+
+bool BoxFirstMethod::expand(const Entry& e, const Frame& f, Budget& budget,
+                            std::int64_t& nodePairs) {
+  const Node& na = m_tree->nodes()[e.a];
+  const Node& nb = m_tree->nodes()[e.b];
+  if (na.isLeaf() && nb.isLeaf()) return leavesIntersect(na, nb, f, budget);
+  pushOverlappingChildren(e, f, nodePairs);
   return false;
 }
 
 Answer BoxFirstMethod::query(const Pose& a, const Pose& b) {
-  const auto start = Clock::now();
-  const bool timed = std::isfinite(m_budgetUs);
+  Budget budget(m_budgetUs);  // starts the clock
   m_heap.clear();  // keeps its capacity: no allocation once grown
   Answer answer;   // "no collision", certain, until shown otherwise
   answer.nodePairs = 1;  // the roots' test
   if (!rootBoxesOverlap(m_bounds, a, b)) return answer;
   const Frame f = frameBetween(a, b);
   m_heap.push_back(Entry{0.0, 0, 0});  // alone in the queue: its key is never compared
-  for (std::uint64_t popped = 0; !m_heap.empty(); ++popped) {
-    // The first read is at the first pop, so a budget of 0 stops before any work.
-    if (timed && popped % kClockInterval == 0 && microsSince(start) >= m_budgetUs) {
+  while (!m_heap.empty()) {
+    if (budget.spent()) {
       answer.collides = true;  // boxes still overlap: all it can say without probability
       answer.confidence = 0.5;
       return answer;
@@ -184,7 +231,7 @@ Answer BoxFirstMethod::query(const Pose& a, const Pose& b) {
     std::pop_heap(m_heap.begin(), m_heap.end(), heapLess);
     const Entry e = m_heap.back();
     m_heap.pop_back();
-    if (expand(e, f, answer.nodePairs)) {
+    if (expand(e, f, budget, answer.nodePairs)) {
       answer.collides = true;  // an intersecting triangle pair: certain
       return answer;
     }

@@ -102,17 +102,45 @@ std::vector<BudgetPoint> usable(const std::vector<BudgetPoint>& points) {
   return out;
 }
 
+// Where a budget falls among usable points (sorted by budget): at point lo == hi, or strictly
+// between points lo < hi; and the error there, interpolated linearly in log(budget).
+struct Bracket {
+  std::size_t lo = 0, hi = 0;
+  double errorPct = 0.0;
+};
+
+// The bracket of `budget` among `points` (usable ones, sorted); false outside their range.
+bool bracketOf(const std::vector<BudgetPoint>& points, double budget, Bracket& out) {
+  if (points.empty() || !(budget >= points.front().budget) || !(budget <= points.back().budget)) {
+    return false;
+  }
+  // The first point at or above the budget: the budget's own, or the upper end of the bracket.
+  const auto above = std::lower_bound(points.begin(), points.end(), budget,
+                                      [](const BudgetPoint& p, double b) { return p.budget < b; });
+  out.hi = static_cast<std::size_t>(above - points.begin());
+  if (above->budget == budget) {
+    out.lo = out.hi;
+    out.errorPct = above->errorPct;
+    return true;
+  }
+  out.lo = out.hi - 1;
+  const BudgetPoint& a = points[out.lo];
+  const BudgetPoint& b = points[out.hi];
+  // 0 < a.budget < budget < b.budget: the span is positive.
+  const double span = std::log(b.budget) - std::log(a.budget);
+  const double t = (std::log(budget) - std::log(a.budget)) / span;
+  out.errorPct = a.errorPct + t * (b.errorPct - a.errorPct);
+  return true;
+}
+
 std::string errorAtCell(const Family& f, double exactUs) {
   const std::vector<BudgetPoint> points = usable(f.points);
-  double error = 0.0;
-  if (interpolateErrorPct(points, exactUs, error)) {
-    // The two measured budgets around exactUs (or the one equal to it).
-    const auto above = std::lower_bound(
-        points.begin(), points.end(), exactUs,
-        [](const BudgetPoint& p, double b) { return p.budget < b; });
-    if (above->budget == exactUs) return format("%.2f", error) + " (measured at that budget)";
-    return format("%.2f", error) + " (interpolated between " + format("%g", (above - 1)->budget) +
-           " and " + format("%g", above->budget) + " us)";
+  Bracket at;
+  if (bracketOf(points, exactUs, at)) {
+    if (at.lo == at.hi) return format("%.2f", at.errorPct) + " (measured at that budget)";
+    return format("%.2f", at.errorPct) + " (interpolated between " +
+           format("%g", points[at.lo].budget) + " and " + format("%g", points[at.hi].budget) +
+           " us)";
   }
   if (points.empty()) return "no positive time budget with an error rate measured";
   return "outside the measured budgets (" + format("%g", points.front().budget) + " to " +
@@ -155,21 +183,10 @@ std::string modelPart(const std::vector<SummaryRow>& rows) {
 
 bool interpolateErrorPct(const std::vector<BudgetPoint>& points, double budget,
                          double& errorPct) {
-  const std::vector<BudgetPoint> p = usable(points);
-  if (p.empty() || !(budget >= p.front().budget) || !(budget <= p.back().budget)) return false;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p[i].budget == budget) {
-      errorPct = p[i].errorPct;
-      return true;
-    }
-    if (i + 1 == p.size() || !(budget < p[i + 1].budget)) continue;
-    const double span = std::log(p[i + 1].budget) - std::log(p[i].budget);
-    if (!(span > 0.0)) continue;  // equal budgets: the next pair brackets it
-    const double t = (std::log(budget) - std::log(p[i].budget)) / span;
-    errorPct = p[i].errorPct + t * (p[i + 1].errorPct - p[i].errorPct);
-    return true;
-  }
-  return false;
+  Bracket at;
+  if (!bracketOf(usable(points), budget, at)) return false;
+  errorPct = at.errorPct;
+  return true;
 }
 
 std::string budgetsSection(const std::vector<std::vector<SummaryRow>>& perModel) {

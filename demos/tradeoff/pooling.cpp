@@ -1,44 +1,37 @@
 // Pooling a model's ADB settings into one method.
 #include "pooling.h"
 
+#include <algorithm>
+
+#include "judging.h"
+
 namespace adb::tradeoff {
-namespace {
-
-template <typename T>
-void appendRepeated(std::vector<T>& out, const std::vector<T>& items, std::size_t times) {
-  for (std::size_t k = 0; k < times; ++k) out.insert(out.end(), items.begin(), items.end());
-}
-
-}  // namespace
 
 bool isPooledAdb(const std::string& name) {
   return name == "adb" || name.rfind("adb-work:", 0) == 0;
 }
 
-std::optional<ModelResult> pooledAdb(const ModelResult& result) {
-  MethodRecords pooled;
-  pooled.name = kPooledAdbName;
-  pooled.params.estimates = true;
+std::optional<PooledAdb> pooledAdb(const ModelResult& result) {
+  PooledAdb pool;
+  pool.records.name = kPooledAdbName;
+  pool.records.params.estimates = true;
+  const MethodRecords* reference = referenceOf(result);
+  pool.hasReference = reference != nullptr;
+  const auto overlapping = static_cast<std::size_t>(
+      std::count(result.rootsOverlap.begin(), result.rootsOverlap.end(), true));
   std::size_t settings = 0;
   for (const MethodRecords& m : result.methods) {
     if (!isPooledAdb(m.name)) continue;
-    pooled.queries.insert(pooled.queries.end(), m.queries.begin(), m.queries.end());
     ++settings;
+    pool.records.queries.insert(pool.records.queries.end(), m.queries.begin(), m.queries.end());
+    pool.overlapping += overlapping;
+    if (!reference) continue;
+    // Judged setting by setting: each indexes the model's poses, as the reference does.
+    const std::vector<JudgedAnswer> judged = judgeAnswers(result, m, *reference);
+    pool.judged.insert(pool.judged.end(), judged.begin(), judged.end());
   }
   if (settings == 0) return std::nullopt;
-  ModelResult out;
-  out.label = result.label;
-  out.triangles = result.triangles;
-  appendRepeated(out.distance, result.distance, settings);
-  appendRepeated(out.rootsOverlap, result.rootsOverlap, settings);
-  out.methods.push_back(std::move(pooled));
-  for (const MethodRecords& m : result.methods) {
-    if (isPooledAdb(m.name)) continue;
-    MethodRecords repeated{m.name, m.params, {}};
-    appendRepeated(repeated.queries, m.queries, settings);
-    out.methods.push_back(std::move(repeated));
-  }
-  return out;
+  return pool;
 }
 
 }  // namespace adb::tradeoff

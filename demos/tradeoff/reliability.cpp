@@ -22,8 +22,8 @@ namespace {
 std::string number(double v) { return std::isnan(v) ? "" : format("%.6g", v); }
 
 void writeGroup(std::ostream& out, const ModelResult& result, const MethodRecords& method,
-                const MethodRecords& reference) {
-  const ReliabilityBins bins = reliabilityBins(judgeAnswers(result, method, reference));
+                const std::vector<JudgedAnswer>& judged) {
+  const ReliabilityBins bins = reliabilityBins(judged);
   const std::string prefix = csvField(result.label) + ',' + std::to_string(result.triangles) +
                              ',' + method.name + ',' + methodParamFields(method.params) + ',';
   for (std::size_t b = 0; b < bins.size(); ++b) {
@@ -40,11 +40,11 @@ void writeReliabilityRows(std::ostream& out, const ModelResult& result) {
   const MethodRecords* reference = referenceOf(result);
   if (!reference) return;
   for (const MethodRecords& m : result.methods) {
-    if (m.params.estimates) writeGroup(out, result, m, *reference);
+    if (m.params.estimates) writeGroup(out, result, m, judgeAnswers(result, m, *reference));
   }
-  if (const std::optional<ModelResult> pooled = pooledAdb(result)) {
-    // The pooled run repeats the reference alongside: it is there whenever it is here.
-    writeGroup(out, *pooled, pooled->methods.front(), *referenceOf(*pooled));
+  // The pool is judged against the same reference: it holds answers here.
+  if (const std::optional<PooledAdb> pool = pooledAdb(result)) {
+    writeGroup(out, result, pool->records, pool->judged);
   }
 }
 

@@ -123,30 +123,36 @@ void finish(std::ofstream& out, const std::string& path) {
 
 namespace {
 
-SummaryRow summarizeMethod(const ModelResult& result, const MethodRecords& m) {
-  const MethodRecords* exact = findMethod(result, "exact");
-  const MethodRecords* reference = referenceOf(result);
-  std::vector<JudgedAnswer> judged;
-  if (reference) judged = judgeAnswers(result, m, *reference);
-  const std::vector<JudgedAnswer>* judgedOrNull = reference ? &judged : nullptr;
+// The row of `m`; `judged`: its answers judged against the run's reference (nullptr
+// without one); `overlapping`: its queries whose root boxes overlap.
+SummaryRow rowOf(const ModelResult& result, const MethodRecords& m,
+                 const std::vector<JudgedAnswer>* judged, std::size_t overlapping) {
   SummaryRow row;
   row.model = result.label;
   row.triangles = result.triangles;
   row.method = m.name;
   row.params = m.params;
   row.queries = m.queries.size();
-  row.overlapping = static_cast<std::size_t>(
-      std::count(result.rootsOverlap.begin(), result.rootsOverlap.end(), true));
+  row.overlapping = overlapping;
   row.meanUs = meanUs(m);
   row.p95Us = p95Us(m);
-  row.errorPct = errorPct(judgedOrNull);
-  row.ece = ece(m, judgedOrNull);
+  row.errorPct = errorPct(judged);
+  row.ece = ece(m, judged);
   row.meanConfidence = meanConfidence(m);
   row.meanNodePairs = meanNodePairs(m);
-  row.speedupVsExact = speedup(exact, row.meanUs);
+  row.speedupVsExact = speedup(findMethod(result, "exact"), row.meanUs);
   row.speedupVsGimpact = speedup(findMethod(result, "gimpact"), row.meanUs);
   row.speedupVsFcl = speedup(findMethod(result, "fcl"), row.meanUs);
   return row;
+}
+
+SummaryRow summarizeMethod(const ModelResult& result, const MethodRecords& m) {
+  const MethodRecords* reference = referenceOf(result);
+  std::vector<JudgedAnswer> judged;
+  if (reference) judged = judgeAnswers(result, m, *reference);
+  const auto overlapping = static_cast<std::size_t>(
+      std::count(result.rootsOverlap.begin(), result.rootsOverlap.end(), true));
+  return rowOf(result, m, reference ? &judged : nullptr, overlapping);
 }
 
 }  // namespace
@@ -154,8 +160,10 @@ SummaryRow summarizeMethod(const ModelResult& result, const MethodRecords& m) {
 std::vector<SummaryRow> summarize(const ModelResult& result) {
   std::vector<SummaryRow> rows;
   for (const MethodRecords& m : result.methods) rows.push_back(summarizeMethod(result, m));
-  if (const std::optional<ModelResult> pooled = pooledAdb(result)) {
-    rows.push_back(summarizeMethod(*pooled, pooled->methods.front()));
+  // Speedups compare mean times, so the peers' own records serve the pool as they are.
+  if (const std::optional<PooledAdb> pool = pooledAdb(result)) {
+    rows.push_back(rowOf(result, pool->records, pool->hasReference ? &pool->judged : nullptr,
+                         pool->overlapping));
   }
   return rows;
 }

@@ -159,8 +159,9 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
       pair.confidence = 1.0 - doubtOf(pair.algorithm->openPairs());
       break;
   }
-  // Leaf pairs cost triangle tests, not node pairs: both are progress.
-  return work.nodePairs + work.triangleTests;
+  // Leaf pairs cost triangle tests, not node pairs, and some popped pairs cost neither: all
+  // are progress.
+  return work.nodePairs + work.triangleTests + work.pairsPopped;
 }
 
 // Every pair gets what it needed last step and a quarter more (at least kFirstGrant; a cut

@@ -80,9 +80,10 @@ void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   }
   QuerySettings settings;
   settings.mode = QueryMode::Exact;
-  m_traversal.reset(meshOf(body0).tree(), toPose(body0->getWorldTransform()),
-                    meshOf(body1).tree(), toPose(body1->getWorldTransform()),
-                    forContacts(settings));
+  if (!start(meshOf(body0).tree(), body0->getWorldTransform(), meshOf(body1).tree(),
+             body1->getWorldTransform(), forContacts(settings))) {
+    return;
+  }
   m_lastStop = m_traversal.step().stop;
   addContacts(body0, body1, *result, FrameSettings{});
 }
@@ -93,8 +94,7 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
   if (!resume) {
     const auto& shape0 = *static_cast<const MeshShape*>(pair.object0->getCollisionShape());
     const auto& shape1 = *static_cast<const MeshShape*>(pair.object1->getCollisionShape());
-    m_traversal.reset(shape0.tree(), toPose(pair.transform0), shape1.tree(),
-                      toPose(pair.transform1), forContacts(settings));
+    start(shape0.tree(), pair.transform0, shape1.tree(), pair.transform1, forContacts(settings));
   }
   const QueryResult& r = m_traversal.step(budget);
   m_lastStop = r.stop;
@@ -107,6 +107,22 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
     m_needed = std::max(m_needed, 2 * r.nodePairs);
   }
   return r;
+}
+
+bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform0,
+                              const AdbTree& tree1, const btTransform& transform1,
+                              const QuerySettings& settings) {
+  try {
+    m_traversal.reset(tree0, toPose(transform0), tree1, toPose(transform1), settings);
+    return true;
+  } catch (const PoseError&) {
+    // A body with a NaN, skewed or runaway transform: no exception may leave Bullet's step,
+    // so the pair gets no contacts (an empty, finished traversal) until its pose is sane.
+    // Naming the body in FrameStats is issue 11's work.
+    m_traversal = Traversal();
+    m_lastStop = StopReason::Completed;
+    return false;
+  }
 }
 
 ContactCount MeshMeshAlgorithm::writeContacts(const detail::DeferredPair& pair,

@@ -142,7 +142,7 @@ std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<Open
   std::array<OpenPair, kMaxPlausibleContacts> best;
   int count = 0;
   for (const OpenPair& o : open) {
-    // The roots' entry carries no estimate (the traversal seeds it at 1): not evidence.
+    // The roots' pair is the whole of both meshes: too coarse to place a contact.
     if (o.a == 0 && o.b == 0) continue;
     if (!(o.p >= settings.pAccept)) continue;
     if (count == limit && (count == 0 || o.p <= best[count - 1].p)) continue;

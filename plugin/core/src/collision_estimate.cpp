@@ -21,7 +21,7 @@ double logOf(double x) {
 // triangles (docs/probability-model.md gives the run, and how the fit does on meshes it never
 // saw). The expected collision cells and the doubt per open pair (the doubt's and the open
 // count's terms together) decide; the union and the best open bound add nothing beyond them.
-constexpr EstimateWeights kFittedWeights{-5.78558, 0, 1.659, 0, -2.25839, 0, 2.12397};
+constexpr EstimateWeights kFittedWeights{-6.01731, 0, 1.31387, 0, -1.90742, 0, 2.14884};
 
 }  // namespace
 
@@ -35,14 +35,18 @@ std::array<double, kEstimateFeatures> estimateFeatures(const Evidence& e) {
           logOf(e.expectedCells)};
 }
 
-double collisionProbability(const Evidence& e, const EstimateWeights& w) {
-  const auto f = estimateFeatures(e);
+double logisticEstimate(const std::array<double, kEstimateFeatures>& f,
+                        const EstimateWeights& w) {
   double z = 0.0;
   for (int i = 0; i < kEstimateFeatures; ++i) z += w[i] * f[i];
   if (std::isnan(z)) return 0.5;  // only NaN weights get here: no opinion
   // 1 / (1 + e^-z) without overflow for large |z|.
   const double p = z >= 0.0 ? 1.0 / (1.0 + std::exp(-z)) : std::exp(z) / (1.0 + std::exp(z));
   return std::clamp(p, 0.0, 1.0);
+}
+
+double collisionProbability(const Evidence& e, const EstimateWeights& w) {
+  return logisticEstimate(estimateFeatures(e), w);
 }
 
 double collisionProbability(const Evidence& e) { return collisionProbability(e, kFittedWeights); }

@@ -22,8 +22,9 @@
 //
 // Exact mode is a depth-first descent over overlapping boxes. Cut by a budget, its stack is
 // estimated by the same model (openPairs()), it answers "no" unless it has found a hit, with
-// the estimate's 1 - P as its confidence; the next step continues from it. Contact generation samples hits per contact region (hitsPerRegion): once
-// a region holds its quota, its remaining pairs are skipped at no cost, in either mode.
+// the estimate's 1 - P as its confidence; the next step continues from it. Contact generation
+// samples hits per contact region (hitsPerRegion): once a region holds its quota, its remaining
+// pairs are skipped at no cost, in either mode.
 //
 // Each expansion poses the (up to two) children of each node at most once, lazily
 // (pair_probability.h's ChildPairs), and tests the up to four child pairs on those: a child
@@ -118,7 +119,7 @@ struct Traversal::Impl {
   std::vector<std::uint32_t> regionHits;  // hits found per contact region
   QueryResult result;
   bool started = false;  // the roots have been tested
-  bool finished = false;
+  bool finished = true;  // nothing to run until reset()
   double prunedMass = 0.0;    // sum of min(1, E[X]) over the pairs pruned for p = 0
   double prunedExpected = 0.0;  // sum of E[X] over them
   double bestAccepted = 0.0;  // largest p of the accepted pairs
@@ -148,14 +149,16 @@ struct Traversal::Impl {
     result = QueryResult{};
     started = finished = exactHit = false;
     prunedMass = prunedExpected = bestAccepted = 0.0;
+    budgeted = false;
     work = StepWork{};
   }
 
   const QueryResult& step(const StepBudget& stepBudget) {
     work = StepWork{};
-    if (finished || !a.tree) return result;
+    if (finished) return result;
     budget = stepBudget;
-    budgeted = budgeted || stepBudget.nodePairs != kUnlimited || std::isfinite(stepBudget.micros);
+    if (std::isnan(budget.micros)) budget.micros = 0.0;  // no time is the safe reading
+    budgeted = budgeted || budget.nodePairs != kUnlimited || std::isfinite(budget.micros);
     stepStart = Clock::now();
     timed = std::isfinite(budget.micros);
     workSinceClock = 0;
@@ -170,7 +173,8 @@ struct Traversal::Impl {
     result.nodePairs += work.nodePairs;
     result.triangleTests += work.triangleTests;
     result.seconds += work.seconds;
-    result.witnessCount = static_cast<std::uint32_t>(witnesses.size());
+    // A "no" shows no witnesses, but keeps them: a later step may still say "collision".
+    result.witnessCount = result.collides ? static_cast<std::uint32_t>(witnesses.size()) : 0;
     finished = !isBudgetStop(result.stop);
     return result;
   }
@@ -331,6 +335,7 @@ struct Traversal::Impl {
     while (!heap.empty()) {
       if (regionFull(heap.back().region)) {  // skipping costs no budget
         heap.pop_back();
+        ++work.pairsPopped;
         continue;
       }
       if (!budgetLeft()) {
@@ -342,6 +347,7 @@ struct Traversal::Impl {
       }
       const Entry e = heap.back();
       heap.pop_back();
+      ++work.pairsPopped;
       if (bothLeaves(e)) {
         if (testLeaves(e.a, e.b, e.region)) {
           exactHit = true;
@@ -426,6 +432,7 @@ struct Traversal::Impl {
       std::pop_heap(heap.begin(), heap.end(), heapLess);
       const Entry e = heap.back();
       heap.pop_back();
+      ++work.pairsPopped;
       if (!regionFull(e.region) && expandAdb(e)) return;
     }
     finishUncertain(StopReason::Completed);
@@ -436,8 +443,7 @@ struct Traversal::Impl {
     if (bothLeaves(e)) {
       if (testLeaves(e.a, e.b, e.region)) {
         exactHit = true;
-        if (settings.stopAtFirstHit) {
-          dropFullRegionsFromHeap();
+        if (settings.stopAtFirstHit) {  // (no region fills: hits are not counted then)
           finish(true, 1.0, StopReason::ExactHit);
           return true;
         }
@@ -505,10 +511,6 @@ struct Traversal::Impl {
     }
     const bool collides = exactHit || why == StopReason::QualityReached ||
                           (isBudgetStop(why) && p >= 0.5);
-    if (!collides) {
-      witnesses.clear();
-      result.witnessesDropped = 0;
-    }
     finish(collides, collides ? p : 1.0 - p, why);
   }
 
@@ -542,8 +544,8 @@ struct Traversal::Impl {
   }
 
   // ADB mode: drops resolved regions and keeps the queue a heap. Only rebuilt where something
-  // was dropped: make_heap may reorder equal priorities, and a query run in steps must pop in
-  // the same order as one run at once.
+  // was dropped: make_heap may reorder equal priorities, so a query run in steps pops in the
+  // same order as one run at once unless regions (contact sampling) were dropped on the way.
   void dropFullRegionsFromHeap() {
     if (dropFullRegions()) std::make_heap(heap.begin(), heap.end(), heapLess);
   }
@@ -582,7 +584,6 @@ Traversal& Traversal::operator=(Traversal&&) noexcept = default;
 
 void Traversal::reset(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                       const QuerySettings& settings) {
-  m_impl->budgeted = false;
   m_impl->reset(a, poseA, b, poseB, settings);
 }
 
@@ -591,7 +592,10 @@ bool Traversal::done() const { return m_impl->finished; }
 const QueryResult& Traversal::result() const { return m_impl->result; }
 const StepWork& Traversal::lastStep() const { return m_impl->work; }
 const std::vector<OpenPair>& Traversal::openPairs() const { return m_impl->heap; }
-const std::vector<Witness>& Traversal::witnesses() const { return m_impl->witnesses; }
+const std::vector<Witness>& Traversal::witnesses() const {
+  static const std::vector<Witness> kNone;
+  return m_impl->result.collides ? m_impl->witnesses : kNone;
+}
 Evidence Traversal::evidence() const { return m_impl->evidence(); }
 
 std::size_t Traversal::capacityBytes() const {

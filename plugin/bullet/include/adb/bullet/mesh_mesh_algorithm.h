@@ -56,6 +56,9 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
 
  private:
+  // Resets the traversal for a new query; false (and an empty traversal) for a bad pose.
+  bool start(const AdbTree& tree0, const btTransform& transform0, const AdbTree& tree1,
+             const btTransform& transform1, const QuerySettings& settings);
   ContactCount addContacts(const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, btManifoldResult& result,
                            const FrameSettings& settings);

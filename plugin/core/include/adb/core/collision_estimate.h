@@ -19,8 +19,9 @@ namespace adb {
 /// What a traversal has seen when it stops undecided.
 struct Evidence {
   double frontierUnion = 0.0;  ///< 1 - prod(1 - p) over the open pairs' Eq. 3 bounds p
-  double frontierDoubt = 0.0;  ///< sum of Pr[X >= 1] over the open pairs
-  double prunedDoubt = 0.0;    ///< sum of E[X] over the pairs pruned for p = 0
+  double frontierDoubt = 0.0;  ///< sum of Pr[X >= 1] over the open pairs (min(1, E[X]) where
+                               ///< rounding left one side no cell)
+  double prunedDoubt = 0.0;    ///< sum of min(1, E[X]) over the pairs pruned for p = 0
   double bestOpen = 0.0;       ///< the largest Eq. 3 bound among the open pairs
   std::uint32_t openPairs = 0;
   std::uint32_t collisionPairs = 0;  ///< pairs accepted with p > p_min (the paper's k)
@@ -39,7 +40,11 @@ std::array<double, kEstimateFeatures> estimateFeatures(const Evidence& e);
 inline constexpr std::array<bool, kEstimateFeatures> kEvidenceFeature{
     false, true, true, true, false, true, true};
 
-/// sigmoid(w . estimateFeatures(e)), in [0, 1].
+/// sigmoid(w . features), in [0, 1]; 0.5 where the sum is NaN (only NaN weights make one).
+double logisticEstimate(const std::array<double, kEstimateFeatures>& features,
+                        const EstimateWeights& w);
+
+/// logisticEstimate(estimateFeatures(e), w).
 double collisionProbability(const Evidence& e, const EstimateWeights& w);
 
 /// The same with the weights fitted for this library (see the .cpp for the fit's command).

@@ -121,10 +121,11 @@ struct OpenPair {
 /// progress.
 inline constexpr std::uint64_t kNodePairsPerExpansion = 4;
 
-/// What one Traversal::step may spend. A step with work left always makes progress unless
-/// its budget is zero: the first step tests the roots, a later one expands at least one
-/// pair (up to kNodePairsPerExpansion node pairs, or one leaf pair's triangle tests)
-/// whatever its budget.
+/// What one Traversal::step may spend. The first step always tests the roots (and expands
+/// pairs only within its budget). Every later step with work left and a non-zero budget takes
+/// at least one pair off the frontier (up to kNodePairsPerExpansion node pairs, or one leaf
+/// pair's triangle tests) whatever its budget, so a caller looping until done() ends. A NaN
+/// time budget counts as zero.
 struct StepBudget {
   std::uint64_t nodePairs = std::numeric_limits<std::uint64_t>::max();
   double micros = std::numeric_limits<double>::infinity();
@@ -134,6 +135,9 @@ struct StepBudget {
 struct StepWork {
   std::uint64_t nodePairs = 0;
   std::uint64_t triangleTests = 0;
+  /// Pairs taken off the frontier: progress even where it cost no node pair or triangle test
+  /// (a leaf pair whose triangles' boxes are all apart, a pair of a full contact region).
+  std::uint64_t pairsPopped = 0;
   double seconds = 0.0;
 };
 
@@ -150,6 +154,7 @@ class Traversal {
   Traversal(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
             const QuerySettings& settings);
   ~Traversal();
+  /// A moved-from Traversal may only be destroyed or assigned to.
   Traversal(Traversal&&) noexcept;
   Traversal& operator=(Traversal&&) noexcept;
 
@@ -166,13 +171,14 @@ class Traversal {
   /// The answer so far; counters and seconds cover every step since reset().
   const QueryResult& result() const;
   const StepWork& lastStep() const;
-  /// The node pairs left unresolved, with the model's estimates, empty when the query is
-  /// done. ADB mode: its queue (heap order, not sorted). Exact mode: the depth-first stack,
-  /// estimated when a step stopped. Pairs of a contact region whose hits were found are not
-  /// in it. Where a budget cut a query, these are the plausible contacts.
+  /// The node pairs left unresolved, with the model's estimates: empty when the traversal
+  /// completed or exact mode hit; ADB mode keeps its queue when k_min or a hit ends it. ADB
+  /// mode: its queue (heap order, not sorted). Exact mode: the depth-first stack, estimated
+  /// when a step stopped. Pairs of a contact region whose hits were found are not in it.
+  /// Where a budget cut a query, these are the plausible contacts.
   const std::vector<OpenPair>& openPairs() const;
-  /// Node pairs accepted on probability and intersecting triangle pairs found so far
-  /// (cleared when the answer is "no collision").
+  /// Node pairs accepted on probability and intersecting triangle pairs found so far; empty
+  /// while the answer is "no collision" (kept: a later step may still say "collision").
   const std::vector<Witness>& witnesses() const;
   /// What the query has seen so far, the input of its collision estimate
   /// (collision_estimate.h); summarised from the open pairs when called.
