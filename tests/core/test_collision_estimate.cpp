@@ -95,6 +95,19 @@ TEST(CollisionEstimate, WeightsTurnFeaturesIntoALogisticModel) {
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{std::log(3.0), 0, 0, 0, 0, 0, 0}), 0.75, 1e-12);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 0, 4.0 * std::log(9.0), 0}), 0.9,
               1e-9);
+  // The features the fitted weights use: counts through log(1 + n), expected cells through
+  // log(x + 1e-3). Each alone: sigmoid(w * feature) against a hand-computed value.
+  e.collisionPairs = 2;  // log 3
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 1, 0, 0, 0}), 0.75, 1e-9);
+  e.collisionPairs = 0;
+  e.openPairs = 8;  // log 9
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 1, 0, 0}), 0.9, 1e-9);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, -1, 0, 0}), 0.1, 1e-9);
+  e.openPairs = 0;
+  e.expectedCells = 4.0 - 1e-3;  // log 4
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 0, 0, 1}), 0.8, 1e-9);
+  e.frontierDoubt = 0.5 - 1e-3;  // the doubt's log: log 0.5, so sigmoid(-log 2) = 1/3
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 1, 0, 0, 0, 0}), 1.0 / 3.0, 1e-9);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 1e6, 0, 0, 0, 0}), 1.0, 1e-12);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, -1e6, 0, 0, 0, 0}), 0.0, 1e-12);
 }

@@ -125,6 +125,7 @@ TEST(AdbConfidence, ExactModeCutSaysNoWithTheEstimate) {
 // expected calibration error (ECE) and the wrong answers among the confident ones.
 struct Calibration {
   int answers = 0, wrong = 0;
+  int colliding = 0;                      // the truth among the answers
   int confident = 0, confidentWrong = 0;  // confidence >= 0.99
   double ece = 0.0;
 };
@@ -146,6 +147,7 @@ Calibration calibrate(const std::string& model, std::uint64_t budget) {
       const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
       const bool wrong = r.collides != truth.collides;
       ++c.answers;
+      c.colliding += truth.collides ? 1 : 0;
       c.wrong += wrong ? 1 : 0;
       if (r.confidence >= 0.99) {
         ++c.confident;
@@ -174,14 +176,17 @@ TEST(AdbConfidence, ConfidentAnswersAreRightAtAboutTheClaimedRate) {
 // estimate's ECE on the generated models is 0.02 to 0.10 over the states a budget stops a
 // query in (docs/probability-model.md), lower over all answers since complete ones are
 // certain. Bound: 0.10 per budget, for ~300 answers per model (a bin's sampling error is
-// about 0.03). The answers must also beat the paper's "no when cut" and the trivial answer
-// "collision whenever the root boxes overlap" (wrong for the 20 to 30 % of these poses
-// that do not collide): under a quarter wrong.
+// about 0.03). The answers must also beat, on the same queries, the best answer without a
+// model, "collision whenever the root boxes overlap" (wrong for every pose that does not
+// collide), and be wrong less than a quarter of the time (the paper's "no when cut" is
+// wrong for 58 to 79 % of tight-budget queries on CAD meshes, issue 10).
 TEST(AdbConfidence, CutAnswersFollowTheEstimateAndAreCalibrated) {
   for (const char* model : {"knot", "pipes", "torus"}) {
     for (std::uint64_t budget : {8ull, 64ull, 512ull}) {
       const Calibration c = calibrate(model, budget);
       EXPECT_LE(c.ece, 0.10) << model << " budget " << budget;
+      const int trivial = c.answers - c.colliding;  // "collision" whenever the roots overlap
+      EXPECT_LT(c.wrong, trivial) << model << " budget " << budget;
       EXPECT_LT(c.wrong, c.answers / 4) << model << " budget " << budget;
     }
   }
