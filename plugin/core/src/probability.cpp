@@ -95,10 +95,14 @@ namespace {
 // term ratios multiply by tabulated reciprocals. Both tables are built once (thread-safe
 // static initialisation); a query reads their first few thousand entries.
 struct FactorialTables {
-  std::vector<double> mantissa;    // n! = mantissa[n] * 2^exponent[n], mantissa in [1, 2)
-  std::vector<int> exponent;
+  // n! = mantissa * 2^exponent, mantissa in [1, 2): side by side, one cache line per lookup.
+  struct Factorial {
+    double mantissa;
+    int exponent;
+  };
+  std::vector<Factorial> factorial;
   std::vector<double> reciprocal;  // 1 / n (0 for n = 0, never read)
-  FactorialTables() : mantissa(kMaxBins + 1), exponent(kMaxBins + 1), reciprocal(kMaxBins + 1) {
+  FactorialTables() : factorial(kMaxBins + 1), reciprocal(kMaxBins + 1) {
     // Accumulated in long double (a 64-bit mantissa on x86): 32768 roundings stay far
     // below double precision.
     long double m = 1.0L;
@@ -110,8 +114,7 @@ struct FactorialTables {
         e += shift - 1;
         reciprocal[n] = 1.0 / n;
       }
-      mantissa[n] = static_cast<double>(m);
-      exponent[n] = e;
+      factorial[n] = {static_cast<double>(m), e};
     }
   }
 };
@@ -129,13 +132,13 @@ double pointProbability(const FactorialTables& f, int u, int v, int w, int t) {
   double m = 1.0;
   int e = 0;
   for (int n : num) {
-    m *= f.mantissa[n];
-    e += f.exponent[n];
+    m *= f.factorial[n].mantissa;
+    e += f.factorial[n].exponent;
   }
   double d = 1.0;
   for (int n : den) {
-    d *= f.mantissa[n];
-    e -= f.exponent[n];
+    d *= f.factorial[n].mantissa;
+    e -= f.factorial[n].exponent;
   }
   // m / d is in [1/32, 16) and the probability is <= 1, so e <= 5. Below the normal range the
   // term is under 2^-1000: 0 for the tails it feeds. 2^e from its bits: ldexp is a library
