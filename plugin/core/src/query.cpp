@@ -51,10 +51,21 @@ constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 
 // The clock is read once this much work has been done since the last read, counting 4 per
-// popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: a short query is not
-// dominated by clock reads, and a budget overshoots by a few microseconds at most (plus one
-// leaf pair: at most 15 x 15 triangle tests, which are never interrupted).
-constexpr unsigned kClockInterval = 64;
+// popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: at most every 64 units
+// (~2-3 us), so that a short query is not dominated by clock reads, and for budgets under 4 us
+// about every 16 units per microsecond of budget, at least every pair (4 units): a fixed 64 made
+// budgets of 1 and 2 us run alike. A budget overshoots by one interval at most (plus one leaf
+// pair: at most 15 x 15 triangle tests, which are never interrupted).
+constexpr unsigned kMaxClockInterval = 64;
+constexpr unsigned kMinClockInterval = 4;
+constexpr double kClockUnitsPerMicro = 16.0;
+
+unsigned clockInterval(double budgetMicros) {
+  const double units = std::clamp(budgetMicros * kClockUnitsPerMicro,
+                                  static_cast<double>(kMinClockInterval),
+                                  static_cast<double>(kMaxClockInterval));
+  return static_cast<unsigned>(units);
+}
 
 bool heapLess(const Entry& x, const Entry& y) { return x.p < y.p; }
 
@@ -130,6 +141,7 @@ struct Traversal::Impl {
   StepBudget budget;
   Clock::time_point stepStart;
   bool timed = false;
+  unsigned interval = kMaxClockInterval;  // work units between clock reads this step
   unsigned workSinceClock = 0;
   bool firstCheck = true;   // the first check reads the clock: a zero budget stops at once
   bool progressed = false;  // this step has expanded a pair (every step makes progress)
@@ -161,6 +173,7 @@ struct Traversal::Impl {
     budgeted = budgeted || budget.nodePairs != kUnlimited || std::isfinite(budget.micros);
     stepStart = Clock::now();
     timed = std::isfinite(budget.micros);
+    interval = timed ? clockInterval(budget.micros) : kMaxClockInterval;
     workSinceClock = 0;
     firstCheck = true;
     progressed = false;
@@ -196,7 +209,7 @@ struct Traversal::Impl {
     }
     if (!timed) return true;
     workSinceClock += 4;
-    if (workSinceClock >= kClockInterval || firstCheck) {
+    if (workSinceClock >= interval || firstCheck) {
       workSinceClock = 0;
       firstCheck = false;
       const double us = std::chrono::duration<double, std::micro>(Clock::now() - stepStart).count();
