@@ -37,12 +37,13 @@ using Features = std::array<double, adb::kEstimateFeatures>;
 struct Sample {
   Features f;
   bool truth;
-  int checkpoint;  // the work budget was 2^checkpoint node pairs
+  int checkpoint;    // budget stops: the work budget was 2^checkpoint node pairs
+  bool paperAnswer;  // quality stops: "collision" at k_min, "no" after pruning (paper Fig. 3)
 };
 
 struct ModelSamples {
   std::string name;
-  std::vector<Sample> samples;
+  std::vector<Sample> samples;  // budget stops, or quality stops (one set of each per model)
 };
 
 constexpr int kCheckpoints = 14;  // work budgets 2^0 .. 2^13 node pairs
@@ -54,7 +55,7 @@ constexpr Quality kQualities[] = {{0.99, 10}, {0.9, 5}, {0.9, 1}, {0.5, 1}};
 
 // The samples of one pose under one quality setting.
 void sampleTraversal(const adb::AdbTree& tree, const adb::PosePair& p, const Quality& q,
-                     bool truth, std::vector<Sample>& out) {
+                     bool truth, std::vector<Sample>& out, std::vector<Sample>& quality) {
   adb::QuerySettings s;
   s.pMin = q.pMin;
   s.kMin = q.kMin;
@@ -68,27 +69,49 @@ void sampleTraversal(const adb::AdbTree& tree, const adb::PosePair& p, const Qua
     t.step(adb::StepBudget{target - done});
     // The estimate answers budget stops only: a query that ended (certain, at k_min, or with
     // its queue emptied by pruning) is not a sample.
-    if (t.done()) return;
-    out.push_back(Sample{adb::estimateFeatures(t.evidence()), truth, c});
+    if (t.done()) {
+      // Ended on its own: at k_min, or with a queue emptied by pruning (an exact hit or an
+      // exhaustive traversal is certain, not a sample).
+      const adb::QueryResult& r = t.result();
+      adb::Evidence e = t.evidence();
+      const bool reached = r.stop == adb::StopReason::QualityReached;
+      if (reached || (r.stop == adb::StopReason::Completed && e.prunedDoubt > 0.0)) {
+        e.quality = true;
+        e.reachedKMin = reached;
+        // The label is whether the paper's answer is right: the estimate keeps that answer
+        // and says how sure it is (it flips it only where it is right less than half the
+        // time). A model of collision itself answered worse than the rule at these stops.
+        quality.push_back(Sample{adb::estimateFeatures(e), reached == truth, c, reached});
+      }
+      return;
+    }
+    out.push_back(Sample{adb::estimateFeatures(t.evidence()), truth, c, false});
   }
 }
 
-ModelSamples collect(const std::string& name, const adb::TriangleMesh& mesh, int rotations) {
+struct Collected {
+  ModelSamples budget, quality;
+};
+
+Collected collect(const std::string& name, const adb::TriangleMesh& mesh, int rotations) {
   const adb::AdbTree tree(mesh);
   adb::QueryScratch scratch;
   adb::QuerySettings exact;
   exact.mode = adb::QueryMode::Exact;
   std::mt19937_64 rng(1);
-  ModelSamples m{name, {}};
+  Collected m{{name, {}}, {name, {}}};
   for (int step = 0; step <= 16; ++step) {
     for (int r = 0; r < rotations; ++r) {
       const adb::PosePair p = adb::benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng);
       const adb::QueryResult truth = adb::collide(tree, p.a, tree, p.b, exact, scratch);
       if (truth.nodePairs <= 1 && !truth.collides) continue;  // root boxes apart: not counted
-      for (const Quality& q : kQualities) sampleTraversal(tree, p, q, truth.collides, m.samples);
+      for (const Quality& q : kQualities) {
+        sampleTraversal(tree, p, q, truth.collides, m.budget.samples, m.quality.samples);
+      }
     }
   }
-  std::fprintf(stderr, "%s: %zu samples\n", name.c_str(), m.samples.size());
+  std::fprintf(stderr, "%s: %zu budget stops, %zu quality stops\n", name.c_str(),
+               m.budget.samples.size(), m.quality.samples.size());
   return m;
 }
 
@@ -165,7 +188,7 @@ void newton(const std::vector<ModelSamples>& models, const std::array<bool, adb:
 // at 0; release a held weight whose gradient says the loss falls as it grows (the KKT
 // condition); repeat until the set is stable. Collinear features (the union, the doubt and
 // the best open bound move together) are why one weight at a time.
-adb::EstimateWeights fit(const std::vector<ModelSamples>& models) {
+adb::EstimateWeights fit(const std::vector<ModelSamples>& models, bool evidenceSigns) {
   constexpr int n = adb::kEstimateFeatures;
   adb::EstimateWeights w{};
   std::array<bool, n> free{};
@@ -174,7 +197,8 @@ adb::EstimateWeights fit(const std::vector<ModelSamples>& models) {
     newton(models, free, w);
     int worst = -1;
     for (int i = 0; i < n; ++i) {
-      if (free[i] && adb::kEvidenceFeature[i] && w[i] < 0.0 && (worst < 0 || w[i] < w[worst])) {
+      if (evidenceSigns && free[i] && adb::kEvidenceFeature[i] && w[i] < 0.0 &&
+          (worst < 0 || w[i] < w[worst])) {
         worst = i;
       }
     }
@@ -264,7 +288,7 @@ void writeSamples(const std::string& path, const std::vector<ModelSamples>& fitS
     std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
     std::exit(1);
   }
-  std::fprintf(out, "set,model,checkpoint,f0,f1,f2,f3,f4,f5,f6,truth\n");
+  std::fprintf(out, "set,model,checkpoint,f0,f1,f2,f3,f4,f5,f6,f7,truth\n");
   for (const auto* set : {&fitSet, &checkSet}) {
     for (const ModelSamples& m : *set) {
       for (const Sample& s : m.samples) {
@@ -276,6 +300,36 @@ void writeSamples(const std::string& path, const std::vector<ModelSamples>& fitS
     }
   }
   std::fclose(out);
+}
+
+void printWeights(const char* name, const adb::EstimateWeights& w) {
+  std::printf("constexpr EstimateWeights %s{", name);
+  for (int i = 0; i < adb::kEstimateFeatures; ++i) std::printf("%s%.6g", i ? ", " : "", w[i]);
+  std::printf("};\n");
+}
+
+// Quality stops per model: the fitted estimate's ECE and wrong answers (its labels say whether
+// the paper's answer is right, so its errors are those of the answer it gives: the paper's,
+// flipped where the estimate is below 0.5), against the paper's answer alone.
+void printQuality(const char* title, const std::vector<ModelSamples>& fitSet,
+                  const std::vector<ModelSamples>& checkSet, const adb::EstimateWeights& w) {
+  std::printf("\n%s\n\n| model | set | stops | ECE | wrong %% | paper's rule wrong %% |\n"
+              "|---|---|---|---|---|---|\n", title);
+  for (const auto* set : {&fitSet, &checkSet}) {
+    for (const ModelSamples& m : *set) {
+      std::vector<const Sample*> all;
+      int paperWrong = 0;
+      for (const Sample& s : m.samples) {
+        all.push_back(&s);
+        paperWrong += s.truth ? 0 : 1;  // the label: the paper's answer is right
+      }
+      const double paper =
+          all.empty() ? 0.0 : 100.0 * paperWrong / static_cast<double>(all.size());
+      std::printf("| %s | %s | %zu | %.3f | %.1f | %.1f |\n", m.name.c_str(),
+                  set == &fitSet ? "fit" : "check", all.size(), ece(all, w), errorRate(all, w),
+                  paper);
+    }
+  }
 }
 
 }  // namespace
@@ -309,24 +363,30 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "adb-calibrate: --triangles must be >= 1000, --rotations >= 1\n");
     return 2;
   }
-  std::vector<ModelSamples> fitSet;
+  std::vector<ModelSamples> fitSet, fitQuality, checkSet, checkQuality;
+  const auto add = [](Collected c, std::vector<ModelSamples>& budget,
+                      std::vector<ModelSamples>& quality) {
+    budget.push_back(std::move(c.budget));
+    quality.push_back(std::move(c.quality));
+  };
   for (const char* name : {"knot", "pipes", "gears", "lock", "torus", "sphere"}) {
-    fitSet.push_back(collect(name, adb::gen::makeModel(name, triangles), rotations));
+    add(collect(name, adb::gen::makeModel(name, triangles), rotations), fitSet, fitQuality);
   }
-  std::vector<ModelSamples> checkSet;
   for (const std::string& path : meshes) {
-    checkSet.push_back(collect(path, adb::io::loadMesh(path), rotations));
+    add(collect(path, adb::io::loadMesh(path), rotations), checkSet, checkQuality);
   }
   if (!samplesPath.empty()) {
     writeSamples(samplesPath, fitSet, checkSet);
   }
-  const adb::EstimateWeights fitted = fit(fitSet);
-  std::printf("fitted weights (collision_estimate.cpp):\nconstexpr EstimateWeights kFittedWeights{");
-  for (int i = 0; i < adb::kEstimateFeatures; ++i) {
-    std::printf("%s%.6g", i ? ", " : "", fitted[i]);
+  const adb::EstimateWeights budgetWeights = fit(fitSet, true);
+  const adb::EstimateWeights qualityWeights = fit(fitQuality, false);
+  printWeights("kBudgetWeights", budgetWeights);
+  printWeights("kQualityWeights", qualityWeights);
+  printTable("Budget stops, generated models (the fit set):", fitSet, budgetWeights);
+  if (!checkSet.empty()) {
+    printTable("Budget stops, check meshes (not fitted):", checkSet, budgetWeights);
   }
-  std::printf("};\n");
-  printTable("Fitted weights, generated models (the fit set):", fitSet, fitted);
-  if (!checkSet.empty()) printTable("Fitted weights, check meshes (not fitted):", checkSet, fitted);
+  printQuality("Quality stops (k_min reached, or the queue emptied by pruning):", fitQuality,
+               checkQuality, qualityWeights);
   return 0;
 }

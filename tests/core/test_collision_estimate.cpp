@@ -83,6 +83,33 @@ TEST(CollisionEstimate, MoreEvidenceNeverLowersTheEstimate) {
   }
 }
 
+// At a quality stop the estimate is the probability that the paper's answer is right: a
+// queue emptied by pruning with little pruned doubt says "no" with confidence, k_min reached
+// with many accepted pairs and doubt says "collision".
+TEST(CollisionEstimate, QualityStopsLeanTowardsThePapersAnswer) {
+  Evidence emptied;
+  emptied.quality = true;
+  emptied.reachedKMin = false;
+  emptied.prunedDoubt = 0.01;
+  emptied.expectedCells = 0.01;
+  EXPECT_LT(collisionProbability(emptied), 0.1);
+  Evidence reached;
+  reached.quality = true;
+  reached.reachedKMin = true;
+  reached.collisionPairs = 10;
+  reached.openPairs = 40;
+  reached.frontierDoubt = 30.0;
+  reached.frontierUnion = 0.999;
+  reached.bestOpen = 0.995;
+  reached.expectedCells = 200.0;
+  EXPECT_GT(collisionProbability(reached), 0.5);
+  for (double x : {0.0, 1.0, kNaN, kInf}) {
+    reached.frontierDoubt = reached.expectedCells = x;
+    const double p = collisionProbability(reached);
+    EXPECT_TRUE(p >= 0.0 && p <= 1.0) << x;
+  }
+}
+
 TEST(CollisionEstimate, WeightsTurnFeaturesIntoALogisticModel) {
   // sigmoid(w . f) with the features as documented: known values.
   Evidence e;

@@ -15,10 +15,11 @@
 //
 // Leaf pairs are never accepted on probability: the tree keeps triangles, so they are decided
 // exactly when popped. An exact hit, or a traversal that ran out of pairs without pruning any,
-// is certain. A budget stop answers with the fitted estimate (collision_estimate.h):
+// is certain. Every other stop answers with the fitted estimate (collision_estimate.h):
 // P(collision) from the open pairs (a partition of what is left, so none is nested in
 // another) and what was accepted and pruned; the answer is the more probable side and the
-// confidence its probability. At k_min, or a queue emptied by pruning, the paper's answer.
+// confidence its probability. At k_min, or a queue emptied by pruning, the estimate is the
+// probability that the paper's answer is right (fitted apart: the evidence differs there).
 //
 // Exact mode is a depth-first descent over overlapping boxes. Cut by a budget, its stack is
 // estimated by the same model (openPairs()), it answers "no" unless it has found a hit, with
@@ -133,7 +134,6 @@ struct Traversal::Impl {
   bool finished = true;  // nothing to run until reset()
   double prunedMass = 0.0;    // sum of min(1, E[X]) over the pairs pruned for p = 0
   double prunedExpected = 0.0;  // sum of E[X] over them
-  double bestAccepted = 0.0;  // largest p of the accepted pairs
   bool exactHit = false;
 
   // --- the current step ----------------------------------------------------------------------
@@ -160,7 +160,7 @@ struct Traversal::Impl {
     regionHits.clear();
     result = QueryResult{};
     started = finished = exactHit = false;
-    prunedMass = prunedExpected = bestAccepted = 0.0;
+    prunedMass = prunedExpected = 0.0;
     budgeted = false;
     work = StepWork{};
   }
@@ -491,7 +491,6 @@ struct Traversal::Impl {
   // A collision pair (p > p_min). Returns true when it is the k_min-th: the query is decided.
   bool accept(std::uint32_t ia, std::uint32_t ib, double p) {
     ++result.collisionPairs;
-    bestAccepted = std::max(bestAccepted, p);
     if (settings.nodeWitnesses) {
       Witness w;
       w.nodeA = ia;
@@ -504,26 +503,22 @@ struct Traversal::Impl {
     return true;
   }
 
-  // The answer of an ADB query that stopped without an exact hit deciding it. Certain when
-  // nothing was left or pruned. Cut by a budget: the more probable side under the fitted
-  // estimate. At the quality target or a queue emptied by pruning: the paper's answer
-  // ("collision" at k_min, with the best accepted p; "no" with 1 - the pruned pairs' E[X] as
-  // a bound), which the estimate does not yet beat there (docs/probability-model.md).
-  // Witnesses (accepted pairs) are kept for a "collision" only.
+  // The answer of an ADB query that stopped without an exact hit deciding it: certain when
+  // nothing was left or pruned, else the more probable side under the fitted estimate, which
+  // at k_min or a queue emptied by pruning is the probability that the paper's answer is
+  // right (collision_estimate.h). Witnesses (accepted pairs) are shown for a "collision".
   void finishUncertain(StopReason why) {
     dropFullRegionsFromHeap();
     double p = 0.0;  // P(collision)
     if (exactHit) {
       p = 1.0;
-    } else if (isBudgetStop(why)) {
-      p = collisionProbability(evidence());
-    } else if (why == StopReason::QualityReached) {
-      p = bestAccepted;
-    } else {
-      p = std::min(1.0, prunedMass);  // Completed: only pruned pairs are left (0: certain)
+    } else if (!heap.empty() || prunedMass > 0.0 || why == StopReason::QualityReached) {
+      Evidence ev = evidence();
+      ev.quality = !isBudgetStop(why);
+      ev.reachedKMin = why == StopReason::QualityReached;
+      p = collisionProbability(ev);
     }
-    const bool collides = exactHit || why == StopReason::QualityReached ||
-                          (isBudgetStop(why) && p >= 0.5);
+    const bool collides = p >= 0.5;
     finish(collides, collides ? p : 1.0 - p, why);
   }
 

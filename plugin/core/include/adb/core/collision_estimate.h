@@ -26,28 +26,38 @@ struct Evidence {
   std::uint32_t openPairs = 0;
   std::uint32_t collisionPairs = 0;  ///< pairs accepted with p > p_min (the paper's k)
   double expectedCells = 0.0;  ///< sum of E[X] (collision cells) over open and pruned pairs
+  /// The query ended on its own (k_min reached, or its queue emptied by pruning) rather than
+  /// on a budget. Such states are fitted apart: there the estimate is the probability that
+  /// the paper's answer ("collision" at k_min, "no" after pruning) is right.
+  bool quality = false;
+  bool reachedKMin = false;  ///< with quality: it ended at k_min (else its queue emptied)
 };
 
-inline constexpr int kEstimateFeatures = 7;
+inline constexpr int kEstimateFeatures = 8;
 using EstimateWeights = std::array<double, kEstimateFeatures>;
 
 /// The model's features: 1, frontierUnion, log(frontierDoubt + prunedDoubt + 1e-3),
-/// log(1 + collisionPairs), log(1 + openPairs), bestOpen, log(expectedCells + 1e-3); each
-/// clamped so that every evidence, however extreme, gives finite features.
+/// log(1 + collisionPairs), log(1 + openPairs), bestOpen, log(expectedCells + 1e-3),
+/// [a quality stop on an emptied queue]; each clamped so that every evidence, however
+/// extreme, gives finite features.
 std::array<double, kEstimateFeatures> estimateFeatures(const Evidence& e);
 
 /// Which features count as evidence for a collision: their weights are kept >= 0.
 inline constexpr std::array<bool, kEstimateFeatures> kEvidenceFeature{
-    false, true, true, true, false, true, true};
+    false, true, true, true, false, true, true, false};
 
 /// sigmoid(w . features), in [0, 1]; 0.5 where the sum is NaN (only NaN weights make one).
+/// With the budget weights this is P(collision); with the quality weights, P(the paper's
+/// answer is right).
 double logisticEstimate(const std::array<double, kEstimateFeatures>& features,
                         const EstimateWeights& w);
 
 /// logisticEstimate(estimateFeatures(e), w).
 double collisionProbability(const Evidence& e, const EstimateWeights& w);
 
-/// The same with the weights fitted for this library (see the .cpp for the fit's command).
+/// P(collision) with the weights fitted for this library: for a budget stop the budget model;
+/// for a quality stop the probability that the paper's answer is right, turned into
+/// P(collision) by that answer (see the .cpp for the fit's command).
 double collisionProbability(const Evidence& e);
 
 }  // namespace adb

@@ -87,15 +87,15 @@ struct Witness {
 };
 
 struct QueryResult {
-  /// Certain after an exact hit or a complete traversal. Cut by a budget: the more probable
-  /// answer, P(collision) >= 0.5 under the fitted estimate (collision_estimate.h). At k_min:
-  /// "collision" (the paper's rule); a queue emptied by pruning: "no collision". Exact mode
-  /// cut before any hit answers "no" (the baseline of a traversal without a model).
+  /// Certain after an exact hit or a traversal that left nothing (nothing pruned either).
+  /// Otherwise the more probable answer under the fitted estimate (collision_estimate.h),
+  /// however the query stopped: a budget, k_min, or a queue emptied by pruning (where the
+  /// estimate is the probability that the paper's answer is right). Exact mode cut before any
+  /// hit answers "no" (the baseline of a traversal without a model).
   bool collides = false;
-  /// Estimated probability that `collides` is right, in [0, 1]: 1 when certain; cut by a
-  /// budget, max(P, 1 - P) (exact mode: 1 - P); at k_min the best accepted pair's p; after
-  /// pruning, 1 - min(1, sum of the pruned pairs' E[X]). docs/probability-model.md measures
-  /// how well these are calibrated.
+  /// Estimated probability that `collides` is right, in [0, 1]: 1 when certain, else
+  /// max(P, 1 - P) (exact mode cut: 1 - P, below 0.5 where P > 0.5).
+  /// docs/probability-model.md measures how well calibrated it is.
   double confidence = 0.0;
   StopReason stop = StopReason::Completed;
   std::uint64_t nodePairs = 0;       ///< node pairs evaluated (box test, probability)
