@@ -5,9 +5,11 @@
 // root boxes overlap, each ADB quality setting is run as one Traversal stepped towards work
 // budgets of 1, 2, 4, ... node pairs (a step makes at least one expansion, so the states sit
 // at 1, 5, 9, 13, 29, ... node pairs); every budget stop is a sample (the estimate answers
-// those): the evidence's features and the exact answer. Work budgets make the fit reproducible; a time budget stops
-// a traversal in one of the same states. The fit is a logistic regression (Newton's method)
-// whose weights on evidence features are held >= 0, each generated model weighted equally.
+// those): the evidence's features and the exact answer. Work budgets make the fit
+// reproducible; a time budget stops a traversal in one of the same states. The fit is a
+// logistic regression (Newton's method) whose weights on evidence features are held >= 0,
+// each generated model weighted equally. Quality stops (k_min, or a queue emptied by pruning)
+// are fitted apart, on whether the paper's answer is right.
 // It prints the weights as the C++ line collision_estimate.cpp holds and the expected
 // calibration error (10 bins) per model and budget, on the fit set and on the check meshes.
 //
@@ -133,7 +135,8 @@ double logLoss(const std::vector<ModelSamples>& models, const adb::EstimateWeigh
 }
 
 // The gradient of the weighted log-loss at w.
-Eigen::VectorXd lossGradient(const std::vector<ModelSamples>& models, const adb::EstimateWeights& w) {
+Eigen::VectorXd lossGradient(const std::vector<ModelSamples>& models,
+                             const adb::EstimateWeights& w) {
   Eigen::VectorXd gradient = Eigen::VectorXd::Zero(adb::kEstimateFeatures);
   for (const ModelSamples& m : models) {
     const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
@@ -147,8 +150,8 @@ Eigen::VectorXd lossGradient(const std::vector<ModelSamples>& models, const adb:
 
 // Newton's method with step halving (near-separable data make the plain step overshoot) on
 // the free weights; the held ones stay at 0.
-void newton(const std::vector<ModelSamples>& models, const std::array<bool, adb::kEstimateFeatures>& free,
-            adb::EstimateWeights& w) {
+void newton(const std::vector<ModelSamples>& models,
+            const std::array<bool, adb::kEstimateFeatures>& free, adb::EstimateWeights& w) {
   constexpr int n = adb::kEstimateFeatures;
   for (int iteration = 0; iteration < 50; ++iteration) {
     Eigen::MatrixXd hessian = Eigen::MatrixXd::Identity(n, n) * 1e-6;  // a little ridge

@@ -119,7 +119,8 @@ TEST(CollisionEstimate, WeightsTurnFeaturesIntoALogisticModel) {
   e.openPairs = 0;
   e.bestOpen = 0.25;
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{-1.0, 2, 7, 5, 3, 0, 0}), 0.5, 1e-9);
-  EXPECT_NEAR(collisionProbability(e, EstimateWeights{std::log(3.0), 0, 0, 0, 0, 0, 0}), 0.75, 1e-12);
+  EXPECT_NEAR(collisionProbability(e, EstimateWeights{std::log(3.0), 0, 0, 0, 0, 0, 0}), 0.75,
+              1e-12);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 0, 0, 0, 4.0 * std::log(9.0), 0}), 0.9,
               1e-9);
   // The features the fitted weights use: counts through log(1 + n), expected cells through

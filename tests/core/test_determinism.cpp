@@ -60,11 +60,14 @@ struct QuerySet {
   std::vector<QuerySettings> settings;
   QuerySet() {
     std::mt19937_64 rng(test::kSeed);
-    for (int i = 0; i < 60; ++i) poses.push_back(benchmarkPoses(mesh.bounds(), 0.4 + 0.027 * i, rng));
+    for (int i = 0; i < 60; ++i) {
+      poses.push_back(benchmarkPoses(mesh.bounds(), 0.4 + 0.027 * i, rng));
+    }
     // Work budgets only: a time budget would make the hash depend on the machine.
     for (std::uint64_t budget : {std::uint64_t{7}, std::uint64_t{60}, std::uint64_t{500},
                                  std::numeric_limits<std::uint64_t>::max()}) {
-      for (QuerySettings s : {test::adbSettings(), test::adbSettings(0.9, 1), test::exactSettings()}) {
+      for (QuerySettings s :
+           {test::adbSettings(), test::adbSettings(0.9, 1), test::exactSettings()}) {
         s.budgetNodePairs = budget;
         settings.push_back(s);
       }

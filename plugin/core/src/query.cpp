@@ -82,7 +82,9 @@ bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& h
   return (loX.array() > hiY.array() + gap).any() || (loY.array() > hiX.array() + gap).any();
 }
 
-bool isBudgetStop(StopReason r) { return r == StopReason::TimeBudget || r == StopReason::WorkBudget; }
+bool isBudgetStop(StopReason r) {
+  return r == StopReason::TimeBudget || r == StopReason::WorkBudget;
+}
 
 // The traversal inverts rotations by transposing them: a scaled or sheared "rotation" would
 // silently misplace every box, so it is refused at the door.
@@ -198,7 +200,8 @@ struct Traversal::Impl {
   // non-zero budget makes progress, so a caller looping until done() cannot livelock; a
   // first step's roots test is its progress (nodePairs <= max(1, budget) for collide()).
   bool budgetLeft() {
-    const bool free = !progressed && budget.nodePairs > 0 && budget.micros > 0.0 && work.nodePairs == 0;
+    const bool free =
+        !progressed && budget.nodePairs > 0 && budget.micros > 0.0 && work.nodePairs == 0;
     if (free) {
       progressed = true;
       return true;
