@@ -89,6 +89,43 @@ void queryArgs(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_QueryAdb)->Apply(queryArgs);
 BENCHMARK(BM_QueryExact)->Apply(queryArgs);
 
+// The fixed query set behind the cost per node pair (docs/probability-model.md section 6):
+// the knot at 20k triangles, distances 0.4 to 2.0 in steps of 0.1 with 50 rotations each
+// (seed 1): 850 poses, all queried twice, once per run. node_pairs is the total. Under callgrind, collide's inclusive instruction
+// count divided by the node_pairs counter is the cost of a node pair, repeatably on a shared
+// machine:
+//   valgrind --tool=callgrind --callgrind-out-file=cg build/bin/adb-bench-core
+//       --benchmark_filter=nodePairCost/adb   (one command line)
+//   callgrind_annotate --inclusive=yes cg | grep 'adb::collide('
+void nodePairCost(benchmark::State& state, adb::QueryMode mode) {
+  const adb::TriangleMesh& mesh = model("knot", 20000);
+  const adb::AdbTree tree(mesh);
+  std::mt19937_64 rng(1);
+  std::vector<adb::PosePair> poses;
+  for (int step = 0; step <= 16; ++step) {
+    for (int r = 0; r < 50; ++r) {
+      poses.push_back(adb::benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng));
+    }
+  }
+  adb::QuerySettings settings;
+  settings.mode = mode;
+  adb::QueryScratch scratch;
+  double nodePairs = 0.0;
+  for (auto _ : state) {
+    for (int repeat = 0; repeat < 2; ++repeat) {
+      for (const adb::PosePair& p : poses) {
+        const adb::QueryResult r = adb::collide(tree, p.a, tree, p.b, settings, scratch);
+        nodePairs += static_cast<double>(r.nodePairs);
+      }
+    }
+  }
+  state.counters["node_pairs"] = nodePairs;
+}
+BENCHMARK_CAPTURE(nodePairCost, adb, adb::QueryMode::Adb)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(nodePairCost, exact, adb::QueryMode::Exact)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
