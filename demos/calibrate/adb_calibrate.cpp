@@ -31,6 +31,7 @@
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
 #include "adb/io/mesh_file.h"
+#include "tradeoff/calibration.h"
 
 namespace {
 
@@ -117,9 +118,6 @@ Collected collect(const std::string& name, const adb::TriangleMesh& mesh, int ro
   return m;
 }
 
-double predict(const Features& f, const adb::EstimateWeights& w) {
-  return adb::logisticEstimate(f, w);
-}
 
 // The weighted log-loss the fit minimises (each model's samples weigh 1 in all).
 double logLoss(const std::vector<ModelSamples>& models, const adb::EstimateWeights& w) {
@@ -127,7 +125,7 @@ double logLoss(const std::vector<ModelSamples>& models, const adb::EstimateWeigh
   for (const ModelSamples& m : models) {
     const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
     for (const Sample& s : m.samples) {
-      const double p = std::clamp(predict(s.f, w), 1e-15, 1.0 - 1e-15);
+      const double p = std::clamp(adb::logisticEstimate(s.f, w), 1e-15, 1.0 - 1e-15);
       loss -= weight * std::log(s.truth ? p : 1.0 - p);
     }
   }
@@ -142,7 +140,7 @@ Eigen::VectorXd lossGradient(const std::vector<ModelSamples>& models,
     const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
     for (const Sample& s : m.samples) {
       const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), adb::kEstimateFeatures);
-      gradient += weight * (predict(s.f, w) - (s.truth ? 1.0 : 0.0)) * x;
+      gradient += weight * (adb::logisticEstimate(s.f, w) - (s.truth ? 1.0 : 0.0)) * x;
     }
   }
   return gradient;
@@ -158,7 +156,7 @@ void newton(const std::vector<ModelSamples>& models,
     for (const ModelSamples& m : models) {
       const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
       for (const Sample& s : m.samples) {
-        const double p = predict(s.f, w);
+        const double p = adb::logisticEstimate(s.f, w);
         const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), n);
         hessian += weight * std::max(p * (1.0 - p), 1e-12) * x * x.transpose();
       }
@@ -226,27 +224,24 @@ adb::EstimateWeights fit(const std::vector<ModelSamples>& models, bool evidenceS
 // Expected calibration error of the answers the estimate gives (the more probable side, with
 // its probability as confidence), 10 equal bins.
 double ece(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
-  std::array<double, 10> conf{}, right{};
-  std::array<int, 10> count{};
+  // The study's binning and ECE (demos/tradeoff/calibration.h), so that both tools' figures
+  // mean the same; 0 rather than NaN for no samples, as the table prints numbers.
+  std::vector<adb::tradeoff::JudgedAnswer> answers;
+  answers.reserve(samples.size());
   for (const Sample* s : samples) {
-    const double p = predict(s->f, w);
+    const double p = adb::logisticEstimate(s->f, w);
     const bool answer = p >= 0.5;
-    const double c = answer ? p : 1.0 - p;
-    const int bin = std::min(9, static_cast<int>(c * 10.0));
-    conf[bin] += c;
-    right[bin] += answer == s->truth ? 1.0 : 0.0;
-    ++count[bin];
+    answers.push_back({answer ? p : 1.0 - p, answer == s->truth});
   }
-  double e = 0.0;
-  for (int b = 0; b < 10; ++b) {
-    if (count[b] > 0) e += std::abs(right[b] - conf[b]);
-  }
-  return samples.empty() ? 0.0 : e / static_cast<double>(samples.size());
+  if (answers.empty()) return 0.0;
+  return adb::tradeoff::expectedCalibrationError(adb::tradeoff::reliabilityBins(answers));
 }
 
 double errorRate(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
   int wrong = 0;
-  for (const Sample* s : samples) wrong += (predict(s->f, w) >= 0.5) != s->truth ? 1 : 0;
+  for (const Sample* s : samples) {
+    wrong += (adb::logisticEstimate(s->f, w) >= 0.5) != s->truth ? 1 : 0;
+  }
   return samples.empty() ? 0.0 : 100.0 * wrong / static_cast<double>(samples.size());
 }
 

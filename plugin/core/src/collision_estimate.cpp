@@ -25,8 +25,8 @@ constexpr EstimateWeights kBudgetWeights{-6.01731, 0, 1.31387, 0, -1.90742, 0, 2
 // P(the paper's answer is right) at quality stops: a model of collision itself answered worse
 // than the paper's rule there (knot 16.7 % wrong against 9.1 %); this one keeps the rule's
 // answer where it is right at least half the time and calibrates its confidence.
-constexpr EstimateWeights kQualityWeights{0.644255, -6.14005, 2.05774, -0.476855,
-                                          -2.21192, 1.80683,  1.79236, 27.8888};
+constexpr EstimateWeights kQualityWeights{-3.65714, -3.78767, -2.82068, -0.507183,
+                                          2.93401,  1.20695,  2.00937, 19.438};
 
 }  // namespace
 

@@ -50,6 +50,8 @@ using Clock = std::chrono::steady_clock;
 using Entry = OpenPair;
 constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+// Exact mode's stack entries carry no estimate until a budget stop asks for one.
+constexpr float kUnestimated = -1.0f;
 
 // The clock is read once this much work has been done since the last read, counting 4 per
 // popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: at most every 64 units
@@ -346,7 +348,7 @@ struct Traversal::Impl {
         finish(false, 1.0, StopReason::Completed);
         return;
       }
-      heap.push_back(Entry{1.0f, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0, 0.0f});
+      heap.push_back(Entry{kUnestimated, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0, 0.0f});
     }
     while (!heap.empty()) {
       if (regionFull(heap.back().region)) {  // skipping costs no budget
@@ -402,7 +404,7 @@ struct Traversal::Impl {
           kids[k] = kids[k - 1];
           depth[k] = depth[k - 1];
         }
-        kids[k] = Entry{1.0f, 1.0f, x.ca[i], x.cb[j], kNoRegion,
+        kids[k] = Entry{kUnestimated, 1.0f, x.ca[i], x.cb[j], kNoRegion,
                         static_cast<std::uint16_t>(x.depthA), static_cast<std::uint16_t>(x.depthB),
                         0.0f};
         depth[k] = static_cast<float>(d);
@@ -562,10 +564,12 @@ struct Traversal::Impl {
   }
 
   // Exact mode cut by a budget: the model's estimates for the pairs left on the stack (at
-  // most 3 per level of depth, not counted as node pairs).
+  // most 3 per level of depth, not counted as node pairs). Only the pairs pushed since the
+  // last stop: a query resumed step after step keeps the bottom of its stack, estimated.
   void estimateFrontier() {
     dropFullRegions();
     for (Entry& e : heap) {
+      if (e.p != kUnestimated) continue;
       const detail::PairEstimate est =
           detail::estimatePair(a, e.a, e.depthA, b, e.b, e.depthB, frame);
       e.p = static_cast<float>(est.lower);
