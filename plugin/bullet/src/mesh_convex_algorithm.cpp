@@ -1,39 +1,227 @@
-// MeshConvexAlgorithm: convex shapes against the triangles of a MeshShape.
+// MeshConvexAlgorithm: the triangles near a convex shape's oriented bounds, in closed form for
+// spheres, capsules and boxes, by Bullet's GJK/EPA otherwise.
 #include "adb/bullet/mesh_convex_algorithm.h"
 
+#include <BulletCollision/BroadphaseCollision/btDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleShape.h>
 
 #include "adb/bullet/mesh_shape.h"
+#include "adb/core/box_query.h"
+#include "adb/core/primitive_contact.h"
+#include "contact_selection.h"
+#include "conversions.h"
 
 namespace adb {
+namespace {
 
-MeshConvexAlgorithm::MeshConvexAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                                         const btCollisionObjectWrapper* body0,
-                                         const btCollisionObjectWrapper* body1, bool swapped)
-    : btActivatingCollisionAlgorithm(ci, body0, body1),
-      m_swapped(swapped),
-      m_triangles(ci.m_dispatcher1, body0, body1, swapped) {}
+using detail::fromBt;
+using detail::toBt;
+using detail::toPose;
+
+// The convex shape in the tree's local frame, as the closed-form tests need it.
+struct LocalConvex {
+  enum Kind { Sphere, Capsule, Box, General } kind = General;
+  Pose pose;                // convex frame -> tree-local frame
+  OrientedBox bounds;       // in mesh coordinates, grown by the reach: culls the tree
+  OrientedBox box;          // Box: the box itself, tree-local
+  Vec3 end0, end1;          // Capsule: its axis, tree-local (Sphere: end0 is the centre)
+  double radius = 0.0;      // Sphere, Capsule
+};
+
+LocalConvex localConvex(const btConvexShape& shape, const Pose& convexInMesh,
+                        const Vec3& treeOrigin, double reach) {
+  LocalConvex c;
+  c.pose = Pose{convexInMesh.rotation, convexInMesh.translation - treeOrigin};
+  c.bounds.axes = convexInMesh.rotation;
+  c.bounds.centre = convexInMesh.translation;
+  switch (shape.getShapeType()) {
+    case SPHERE_SHAPE_PROXYTYPE: {
+      c.kind = LocalConvex::Sphere;
+      c.radius = static_cast<const btSphereShape&>(shape).getRadius();
+      c.end0 = c.pose.translation;
+      c.bounds.half = Vec3::Constant(c.radius);
+      break;
+    }
+    case CAPSULE_SHAPE_PROXYTYPE: {
+      const auto& capsule = static_cast<const btCapsuleShape&>(shape);
+      c.kind = LocalConvex::Capsule;
+      c.radius = capsule.getRadius();
+      const int up = capsule.getUpAxis();
+      const Vec3 axis = c.pose.rotation.col(up) * capsule.getHalfHeight();
+      c.end0 = c.pose.translation - axis;
+      c.end1 = c.pose.translation + axis;
+      c.bounds.half = Vec3::Constant(c.radius);
+      c.bounds.half[up] += capsule.getHalfHeight();
+      break;
+    }
+    case BOX_SHAPE_PROXYTYPE: {
+      c.kind = LocalConvex::Box;
+      c.box.centre = c.pose.translation;
+      c.box.axes = c.pose.rotation;
+      c.box.half = fromBt(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin());
+      c.bounds.half = c.box.half;
+      break;
+    }
+    default: {
+      // Any other convex shape: its own axis-aligned box in its own frame, oriented.
+      btVector3 lo, hi;
+      btTransform identity;
+      identity.setIdentity();
+      shape.getAabb(identity, lo, hi);
+      const Vec3 centre = 0.5 * fromBt(lo + hi);
+      c.bounds.centre += convexInMesh.rotation * centre;
+      c.bounds.half = 0.5 * fromBt(hi - lo);
+      c.box = OrientedBox{c.bounds.centre - treeOrigin, c.bounds.axes, c.bounds.half};
+      break;
+    }
+  }
+  c.bounds.half.array() += reach;
+  return c;
+}
+
+// Turns closed-form contacts (tree-local, triangle side) into candidates in Bullet's terms.
+void addCandidates(const PrimitiveContacts& found, const btTransform& meshPose,
+                   const Vec3& treeOrigin, double meshMargin, double threshold, bool meshIsBody0,
+                   int meshTriangle, detail::ContactSelection& selection) {
+  for (int i = 0; i < found.count; ++i) {
+    const PrimitiveContact& p = found.points[i];
+    const double distance = p.separation - meshMargin;
+    if (!(distance < threshold)) continue;
+    const btVector3 onMesh = meshPose(toBt(p.onTriangle + treeOrigin));
+    const btVector3 normal = meshPose.getBasis() * toBt(p.normal);  // mesh -> convex
+    detail::CandidateContact c;
+    c.distance = static_cast<btScalar>(distance);
+    c.meshTriangle = meshTriangle;
+    if (meshIsBody0) {
+      // Body 1 is the convex shape: its point, and the normal pointing back at the mesh.
+      c.normalOnB = -normal;
+      c.pointOnB = onMesh + normal * c.distance;
+    } else {
+      c.normalOnB = normal;
+      c.pointOnB = onMesh;
+    }
+    selection.add(c);
+  }
+}
+
+// GJK/EPA per triangle near a general convex shape, as Bullet's convex-concave algorithm
+// runs it, each triangle's points gathered in a scratch manifold and then offered to the
+// selection: fed straight into the pair's manifold, a shallow point would replace a deeper
+// one nearby and the deepest could be lost.
+void generalConvexContacts(btDispatcher& dispatcher, const btCollisionObjectWrapper* meshWrap,
+                           const btCollisionObjectWrapper* convexWrap, const LocalConvex& local,
+                           double reach, bool meshIsBody0, const btDispatcherInfo& info,
+                           btManifoldResult& result, detail::ContactSelection& selection) {
+  const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
+  const AdbTree& tree = mesh->tree();
+  const auto& vertices = tree.localVertices();
+  const btTransform& meshPose = meshWrap->getWorldTransform();
+  btPersistentManifold* pairManifold = result.getPersistentManifold();
+  btPersistentManifold* scratch =
+      dispatcher.getNewManifold(pairManifold->getBody0(), pairManifold->getBody1());
+  result.setPersistentManifold(scratch);
+  btTriangleShape triangle(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
+  triangle.setMargin(mesh->getMargin());
+  forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+    const Triangle& tri = tree.triangles()[t];
+    if (!triangleNearBox(vertices[tri[0]], vertices[tri[1]], vertices[tri[2]], local.box,
+                         reach)) {
+      return;
+    }
+    for (int k = 0; k < 3; ++k) triangle.m_vertices1[k] = toBt(vertices[tri[k]] + tree.origin());
+    const int index = static_cast<int>(tree.meshTriangle(t));
+    const btCollisionObjectWrapper triangleWrap(meshWrap, &triangle,
+                                                meshWrap->getCollisionObject(), meshPose, 0,
+                                                index);
+    // The triangle takes the mesh's place in the result, in the result's body order, so the
+    // normals come out the way the manifold holds its bodies.
+    const btCollisionObjectWrapper* first = meshIsBody0 ? &triangleWrap : convexWrap;
+    const btCollisionObjectWrapper* second = meshIsBody0 ? convexWrap : &triangleWrap;
+    if (meshIsBody0) {
+      result.setBody0Wrap(&triangleWrap);
+    } else {
+      result.setBody1Wrap(&triangleWrap);
+    }
+    scratch->clearManifold();
+    btCollisionAlgorithm* algorithm =
+        dispatcher.findAlgorithm(first, second, scratch, BT_CONTACT_POINT_ALGORITHMS);
+    algorithm->processCollision(first, second, info, &result);
+    algorithm->~btCollisionAlgorithm();
+    dispatcher.freeCollisionAlgorithm(algorithm);
+    for (int i = 0; i < scratch->getNumContacts(); ++i) {
+      const btManifoldPoint& p = scratch->getContactPoint(i);
+      selection.add({p.m_normalWorldOnB, p.m_positionWorldOnB, p.getDistance(), index});
+    }
+  });
+  if (meshIsBody0) {
+    result.setBody0Wrap(meshWrap);
+  } else {
+    result.setBody1Wrap(meshWrap);
+  }
+  result.setPersistentManifold(pairManifold);
+  dispatcher.releaseManifold(scratch);
+}
+
+}  // namespace
 
 void MeshConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                            const btCollisionObjectWrapper* body1,
                                            const btDispatcherInfo& info,
                                            btManifoldResult* result) {
-  const btCollisionObjectWrapper* convex = m_swapped ? body1 : body0;
-  const btCollisionObjectWrapper* mesh = m_swapped ? body0 : body1;
-  const auto* shape = static_cast<const MeshShape*>(mesh->getCollisionShape());
-  result->setPersistentManifold(m_triangles.m_manifoldPtr);
-  // The callback computes the convex shape's box in the mesh's frame, then tests each
-  // triangle the tree reports near it (MeshShape::processAllTriangles).
-  m_triangles.setTimeStepAndCounters(shape->getMargin(), info, convex, mesh, result);
-  m_triangles.m_manifoldPtr->setBodies(convex->getCollisionObject(), mesh->getCollisionObject());
-  shape->processAllTriangles(&m_triangles, m_triangles.getAabbMin(), m_triangles.getAabbMax());
-  result->refreshContactPoints();
-  m_triangles.clearWrapperData();
-}
+  btPersistentManifold* manifold = manifoldFor(body0, body1, result);
+  const bool meshIsBody0 = !m_swapped;
+  const btCollisionObjectWrapper* meshWrap = meshIsBody0 ? body0 : body1;
+  const btCollisionObjectWrapper* convexWrap = meshIsBody0 ? body1 : body0;
+  const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
+  const auto* convex = static_cast<const btConvexShape*>(convexWrap->getCollisionShape());
+  const AdbTree& tree = mesh->tree();
+  const btTransform& meshPose = meshWrap->getWorldTransform();
 
-void MeshConvexAlgorithm::getAllContactManifolds(btManifoldArray& manifolds) {
-  if (m_triangles.m_manifoldPtr) manifolds.push_back(m_triangles.m_manifoldPtr);
+  const double threshold = btMax(manifold->getContactBreakingThreshold(),
+                                 result->m_closestPointDistanceThreshold);
+  const double meshMargin = mesh->getMargin();
+  const double reach = threshold + meshMargin;
+  const Pose convexInMesh = toPose(meshPose.inverseTimes(convexWrap->getWorldTransform()));
+  if (!convexInMesh.rotation.allFinite() || !convexInMesh.translation.allFinite()) return;
+  const LocalConvex local = localConvex(*convex, convexInMesh, tree.origin(), reach);
+  const auto& vertices = tree.localVertices();
+
+  detail::ContactSelection selection;
+  if (local.kind == LocalConvex::General) {
+    generalConvexContacts(*m_dispatcher, meshWrap, convexWrap, local, reach, meshIsBody0, info,
+                          *result, selection);
+    selection.write(*result, meshIsBody0);
+    result->refreshContactPoints();
+    return;
+  }
+
+  forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+    const Triangle& tri = tree.triangles()[t];
+    const Vec3& a = vertices[tri[0]];
+    const Vec3& b = vertices[tri[1]];
+    const Vec3& c = vertices[tri[2]];
+    PrimitiveContacts found;
+    switch (local.kind) {
+      case LocalConvex::Sphere:
+        sphereTriangleContacts(local.end0, local.radius, a, b, c, reach, found);
+        break;
+      case LocalConvex::Capsule:
+        capsuleTriangleContacts(local.end0, local.end1, local.radius, a, b, c, reach, found);
+        break;
+      default:
+        boxTriangleContacts(local.box, a, b, c, reach, found);
+        break;
+    }
+    addCandidates(found, meshPose, tree.origin(), meshMargin, threshold, meshIsBody0,
+                  static_cast<int>(tree.meshTriangle(t)), selection);
+  });
+  selection.write(*result, meshIsBody0);
+  result->refreshContactPoints();
 }
 
 }  // namespace adb

@@ -189,8 +189,8 @@ void registerAlgorithms(btCollisionDispatcher& dispatcher,
     return f;
   };
   static CreateAlgorithm<MeshMeshAlgorithm> createMeshMesh;
-  static CreateAlgorithm<MeshConvexAlgorithm> createConvexMesh;
-  static CreateAlgorithm<MeshConvexAlgorithm> createMeshConvex =
+  static CreateAlgorithm<MeshConvexAlgorithm> createMeshConvex;
+  static CreateAlgorithm<MeshConvexAlgorithm> createConvexMesh =
       swapped(CreateAlgorithm<MeshConvexAlgorithm>{});
   const auto both = [&](int t0, int t1, btCollisionAlgorithmCreateFunc* f) {
     dispatcher.registerCollisionCreateFunc(t0, t1, f);

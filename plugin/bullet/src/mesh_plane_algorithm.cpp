@@ -9,15 +9,9 @@
 #include <cstdint>
 
 #include "adb/bullet/mesh_shape.h"
+#include "contact_selection.h"
 
 namespace adb {
-namespace {
-
-// Candidate points handed to the manifold per step at most: it keeps 4 (the widest), and a
-// mesh lying flat on the plane offers every vertex of its face.
-constexpr int kMaxCandidates = 256;
-
-}  // namespace
 
 void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                           const btCollisionObjectWrapper* body1,
@@ -39,13 +33,14 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   const double c = n.dot(tree.origin()) + nWorld.dot(meshPose.getOrigin()) - dWorld;
   const double reach = manifold->getContactBreakingThreshold() + mesh->getMargin();
 
-  // Bullet's normal on body 1 points towards body 0.
+  // Bullet's normal on body 1 points towards body 0. Every vertex within reach is a
+  // candidate; the selection keeps the deepest and the widest support (contact_selection.h).
   const btVector3 normalOnB = m_swapped ? -nWorld : nWorld;
-  int candidates = 0;
+  detail::ContactSelection selection;
   std::uint32_t stack[64];  // at most one pending sibling per level of a <= 29-level tree
   int top = 0;
   stack[top++] = 0;
-  while (top > 0 && candidates < kMaxCandidates) {
+  while (top > 0) {
     const Node& node = tree.nodes()[stack[--top]];
     const Vec3 centre = 0.5 * (node.boxLo() + node.boxHi());
     const Vec3 half = 0.5 * (node.boxHi() - node.boxLo());
@@ -60,18 +55,19 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
       for (std::uint32_t v : tree.triangles()[t]) {
         const Vec3& x = tree.localVertices()[v];
         const double distance = n.dot(x) + c;
-        if (distance > reach || candidates >= kMaxCandidates) continue;
+        if (!(distance <= reach)) continue;
         const Vec3 m = x + tree.origin();
         const btVector3 onMesh = meshPose(btVector3(static_cast<btScalar>(m.x()),
                                                     static_cast<btScalar>(m.y()),
                                                     static_cast<btScalar>(m.z())));
         const btVector3 onPlane = onMesh - nWorld * static_cast<btScalar>(distance);
-        result->addContactPoint(normalOnB, m_swapped ? onMesh : onPlane,
-                                static_cast<btScalar>(distance));
-        ++candidates;
+        selection.add({normalOnB, m_swapped ? onMesh : onPlane,
+                       static_cast<btScalar>(distance - mesh->getMargin()),
+                       static_cast<int>(tree.meshTriangle(t))});
       }
     }
   }
+  selection.write(*result, !m_swapped);
   result->refreshContactPoints();
 }
 

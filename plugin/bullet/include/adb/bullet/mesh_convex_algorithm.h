@@ -1,37 +1,22 @@
-// MeshConvexAlgorithm: a MeshShape against any convex shape (box, sphere, capsule, convex
-// hull, ...), through the triangles of the mesh near the convex shape — Bullet's own
-// convex-concave path, minus its SDF branch: Bullet treats CUSTOM_CONCAVE_SHAPE_TYPE as an
-// SDF shape and would cast a MeshShape to btSdfCollisionShape.
+// MeshConvexAlgorithm: a MeshShape against a convex shape. The tree is culled with the convex
+// shape's own oriented bounds taken into the mesh frame (its axis-aligned box there would
+// cover the whole mesh for a tilted wall); spheres, capsules and boxes are then tested
+// against each triangle in closed form (adb/core/primitive_contact.h), and every other
+// convex shape (cylinder, cone, hull, ...) by Bullet's GJK/EPA per triangle. The candidate
+// points are reduced to the deepest and the widest support before they reach the manifold.
 #pragma once
 
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
-#include <BulletCollision/CollisionDispatch/btConvexConcaveCollisionAlgorithm.h>
-
-#include "adb/bullet/precision.h"
+#include "adb/bullet/manifold_algorithm.h"
 
 namespace adb {
 
-ATTRIBUTE_ALIGNED16(class) MeshConvexAlgorithm : public btActivatingCollisionAlgorithm {
+class MeshConvexAlgorithm : public ManifoldAlgorithm {
  public:
-  BT_DECLARE_ALIGNED_ALLOCATOR();
-
-  /// `swapped`: body0 is the mesh and body1 the convex shape.
-  MeshConvexAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
-                      const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                      bool swapped);
+  using ManifoldAlgorithm::ManifoldAlgorithm;
 
   void processCollision(const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                         btManifoldResult* result) override;
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return 1;  // no continuous collision detection against meshes
-  }
-  void getAllContactManifolds(btManifoldArray& manifolds) override;
-
- private:
-  bool m_swapped;
-  btConvexTriangleCallback m_triangles;  // owns the manifold, runs convex-triangle tests
 };
 
 }  // namespace adb

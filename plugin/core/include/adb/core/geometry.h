@@ -28,6 +28,13 @@ struct Aabb {
   Vec3 extent() const { return hi - lo; }
 };
 
+/// An oriented box: centre, axes (the columns of a rotation) and half extents along them.
+struct OrientedBox {
+  Vec3 centre = Vec3::Zero();
+  Mat3 axes = Mat3::Identity();
+  Vec3 half = Vec3::Zero();
+};
+
 /// A rigid pose: world = rotation * x + translation, with x in the mesh's own (file)
 /// coordinates. The rotation must be orthonormal; it is not re-normalised per query.
 struct Pose {

@@ -1,0 +1,47 @@
+// Internal: the few contact points worth handing to a manifold, chosen from many candidates.
+//
+// A mesh lying on a floor offers hundreds of candidate points (every vertex near a plane,
+// every triangle near a box). Bullet's manifold keeps 4, and fed one point at a time it
+// keeps whichever arrived in a good order: fed in tree order, it could hold 4 shallow points
+// while the deepest went unseen, and bodies sank. Here the deepest point is always kept,
+// then the points that span the widest support (as Bullet's own reduction prefers), and
+// only those reach the manifold. Fixed capacity: no allocation per step.
+#pragma once
+
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+
+#include <cstdint>
+
+#include "adb/bullet/precision.h"
+
+namespace adb::detail {
+
+/// One candidate, in Bullet's terms for the result's body order.
+struct CandidateContact {
+  btVector3 normalOnB;  ///< unit, on body 1, pointing towards body 0
+  btVector3 pointOnB;   ///< world point on body 1
+  btScalar distance;    ///< < 0 penetrating
+  int meshTriangle;     ///< the mesh's triangle index (Bullet's shape identifier)
+};
+
+class ContactSelection {
+ public:
+  /// Candidates kept at most: past this, a deeper candidate replaces the shallowest.
+  static constexpr int kCapacity = 256;
+  /// Points written to the manifold per step at most: its 4, and one spare so that a point
+  /// Bullet merges with a cached one does not cost the support its corner.
+  static constexpr int kWritten = 5;
+
+  void add(const CandidateContact& c);
+  int size() const { return m_count; }
+  /// Writes the deepest candidate and then, greedily, the ones farthest from those already
+  /// written (the widest support). `meshIsBody0` picks which shape identifier the triangle
+  /// index goes to. Returns the number of points written.
+  int write(btManifoldResult& result, bool meshIsBody0);
+
+ private:
+  CandidateContact m_candidates[kCapacity];
+  int m_count = 0;
+};
+
+}  // namespace adb::detail
