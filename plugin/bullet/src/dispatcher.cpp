@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "adb/bullet/mesh_mesh_algorithm.h"
 #include "adb/core/tree.h"
@@ -41,6 +42,20 @@ void Dispatcher::setFrameSettings(const FrameSettings& s) {
 }
 
 const FrameStats& Dispatcher::lastFrameStats() const { return m_scheduler->stats(); }
+
+void Dispatcher::setBadPoseCallback(std::function<void(const BadPose&)> callback) {
+  m_badPoseCallback = std::move(callback);
+}
+
+void Dispatcher::reportBadPose(const btCollisionObject* body, PoseDefect defect) {
+  const BadPose* first = m_scheduler->noteBadPose(body, defect);
+  if (!first || !m_badPoseCallback) return;
+  try {
+    m_badPoseCallback(*first);
+  } catch (...) {
+    // Nothing may leave Bullet's step; the body is named in lastFrameStats() all the same.
+  }
+}
 
 void Dispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
                                            const btDispatcherInfo& info,

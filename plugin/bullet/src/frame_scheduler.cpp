@@ -59,7 +59,19 @@ double doubtOf(const std::vector<OpenPair>& open) {
 
 void FrameScheduler::begin() {
   m_pairs.clear();
+  m_badBodies.clear();
+  m_badNamed = 0;
   m_collecting = true;
+}
+
+const BadPose* FrameScheduler::noteBadPose(const btCollisionObject* body, PoseDefect defect) {
+  if (std::find(m_badBodies.begin(), m_badBodies.end(), body) != m_badBodies.end()) {
+    return nullptr;
+  }
+  m_badBodies.push_back(body);
+  m_badPose = BadPose{body, body->getWorldArrayIndex(), body->getUserPointer(), defect};
+  if (m_badNamed < FrameStats::kNamedBadPoses) m_badNamedPoses[m_badNamed++] = m_badPose;
+  return &m_badPose;
 }
 
 void FrameScheduler::run(const FrameSettings& settings) {
@@ -67,6 +79,8 @@ void FrameScheduler::run(const FrameSettings& settings) {
   m_start = Clock::now();
   m_stats = FrameStats{};
   m_stats.pairs = static_cast<std::uint32_t>(m_pairs.size());
+  m_stats.badPoseBodies = static_cast<std::uint32_t>(m_badBodies.size());
+  std::copy(m_badNamedPoses, m_badNamedPoses + m_badNamed, m_stats.badPoses);
   m_unqueried = m_pairs.size();
   m_undecided = 0;
   firstPass(settings);

@@ -47,6 +47,9 @@ class FrameScheduler {
   /// Spends the budget across the noted pairs, writes their manifolds, ends the step.
   void run(const FrameSettings& settings);
   const FrameStats& stats() const { return m_stats; }
+  /// Notes a body with an unusable pose for this step: its report the first time this step
+  /// (for the dispatcher's callback), nullptr when already noted.
+  const BadPose* noteBadPose(const btCollisionObject* body, PoseDefect defect);
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -77,6 +80,11 @@ class FrameScheduler {
   std::size_t m_undecided = 0;
   double m_margin = 0.0;  // microseconds held back from a time budget (updateMargin)
   bool m_collecting = false;
+  // Bodies with unusable poses this step (reused: no allocation in steady state).
+  std::vector<const btCollisionObject*> m_badBodies;
+  BadPose m_badPose;  // the last one noted
+  std::uint32_t m_badNamed = 0;
+  BadPose m_badNamedPoses[FrameStats::kNamedBadPoses];
 };
 
 }  // namespace adb::detail

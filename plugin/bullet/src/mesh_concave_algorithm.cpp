@@ -64,6 +64,7 @@ struct TriangleVsMesh : public btTriangleCallback {
 void MeshConcaveAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                             const btCollisionObjectWrapper* body1,
                                             const btDispatcherInfo&, btManifoldResult* result) {
+  if (!acceptPoses(body0, body1)) return;
   manifoldFor(body0, body1, result);
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* otherWrap = m_swapped ? body0 : body1;

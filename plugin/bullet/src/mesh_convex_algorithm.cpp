@@ -173,6 +173,7 @@ void MeshConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0
                                            const btCollisionObjectWrapper* body1,
                                            const btDispatcherInfo& info,
                                            btManifoldResult* result) {
+  if (!acceptPoses(body0, body1)) return;
   btPersistentManifold* manifold = manifoldFor(body0, body1, result);
   const bool meshIsBody0 = !m_swapped;
   const btCollisionObjectWrapper* meshWrap = meshIsBody0 ? body0 : body1;

@@ -70,6 +70,7 @@ void MeshMeshAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                          const btDispatcherInfo&, btManifoldResult* result) {
   // Only top-level pairs of a world's dispatch can wait for the scheduler: a compound's
   // child wrappers, and contactTest's callbacks, live only during this call.
+  if (!acceptPoses(body0, body1)) return;
   const bool topLevel = !body0->m_parent && !body1->m_parent;
   if (m_scheduler && m_scheduler->collecting() && topLevel) {
     m_scheduler->defer(detail::DeferredPair{
@@ -116,9 +117,9 @@ bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform
     m_traversal.reset(tree0, toPose(transform0), tree1, toPose(transform1), settings);
     return true;
   } catch (const PoseError&) {
-    // A body with a NaN, skewed or runaway transform: no exception may leave Bullet's step,
-    // so the pair gets no contacts (an empty, finished traversal) until its pose is sane.
-    // Naming the body in FrameStats is issue 11's work.
+    // processCollision checked both poses (acceptPoses); kept as the last guard, since no
+    // exception may leave Bullet's step: the pair gets no contacts (an empty, finished
+    // traversal).
     m_traversal = Traversal();
     m_lastStop = StopReason::Completed;
     return false;

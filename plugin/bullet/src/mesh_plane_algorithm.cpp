@@ -16,6 +16,7 @@ namespace adb {
 void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                           const btCollisionObjectWrapper* body1,
                                           const btDispatcherInfo&, btManifoldResult* result) {
+  if (!acceptPoses(body0, body1)) return;
   btPersistentManifold* manifold = manifoldFor(body0, body1, result);
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* planeWrap = m_swapped ? body0 : body1;

@@ -88,25 +88,19 @@ bool isBudgetStop(StopReason r) {
   return r == StopReason::TimeBudget || r == StopReason::WorkBudget;
 }
 
-// The traversal inverts rotations by transposing them: a scaled or sheared "rotation" would
-// silently misplace every box, so it is refused at the door.
-constexpr double kOrthonormalTolerance = 1e-6;
-
 void validatePose(const Pose& p, const char* which) {
-  const auto fail = [&](const std::string& why) {
-    throw PoseError(std::string("collide: pose ") + which + " " + why);
-  };
-  if (!p.rotation.allFinite() || !p.translation.allFinite()) fail("has a non-finite entry");
-  if (p.translation.cwiseAbs().maxCoeff() > detail::kMaxCoordinate) {
-    fail("has a translation of " + detail::formatNumber(p.translation.cwiseAbs().maxCoeff()) +
-         "; poses are supported up to " + detail::formatNumber(detail::kMaxCoordinate) +
-         " from the origin");
+  const PoseDefect defect = poseDefect(p);
+  if (defect == PoseDefect::None) return;
+  std::string why = describe(defect);
+  if (defect == PoseDefect::TooFar) {
+    why += " (" + detail::formatNumber(p.translation.cwiseAbs().maxCoeff()) + ")";
+  } else if (defect == PoseDefect::NotOrthonormal) {
+    why += " (|R^T R - I| = " +
+           detail::formatNumber(
+               (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff()) +
+           ")";
   }
-  const double off = (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
-  if (off > kOrthonormalTolerance) {
-    fail("has a rotation that is not orthonormal (|R^T R - I| = " + detail::formatNumber(off) +
-         ")");
-  }
+  throw PoseError(std::string("collide: pose ") + which + " " + why);
 }
 
 // The children of a node for the simultaneous descent: a leaf is its own only child.
@@ -121,6 +115,27 @@ int children(const Node& n, std::uint32_t self, std::uint32_t out[2]) {
 }
 
 }  // namespace
+
+// The traversal inverts rotations by transposing them: a scaled or sheared "rotation" would
+// silently misplace every box, so it is refused at the door.
+PoseDefect poseDefect(const Pose& p) {
+  constexpr double kOrthonormalTolerance = 1e-6;
+  if (!p.rotation.allFinite() || !p.translation.allFinite()) return PoseDefect::NonFinite;
+  if (p.translation.cwiseAbs().maxCoeff() > detail::kMaxCoordinate) return PoseDefect::TooFar;
+  const double off = (p.rotation.transpose() * p.rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
+  return off > kOrthonormalTolerance ? PoseDefect::NotOrthonormal : PoseDefect::None;
+}
+
+const char* describe(PoseDefect defect) {
+  switch (defect) {
+    case PoseDefect::None: return "";
+    case PoseDefect::NonFinite: return "has a non-finite entry";
+    case PoseDefect::TooFar:
+      return "has a translation beyond 1e+150 from the origin, the largest supported";
+    case PoseDefect::NotOrthonormal: return "has a rotation that is not orthonormal";
+  }
+  return "";
+}
 
 struct Traversal::Impl {
   // --- the query, fixed by reset() -------------------------------------------------------

@@ -13,6 +13,7 @@
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 
+#include <functional>
 #include <memory>
 
 #include "adb/bullet/frame_budget.h"
@@ -39,6 +40,15 @@ class Dispatcher : public btCollisionDispatcher {
   /// Statistics of the last step's mesh-mesh pairs.
   const FrameStats& lastFrameStats() const;
 
+  /// Called once per step for each body whose pose adb cannot use (NaN, a rotation that is
+  /// not orthonormal, beyond 1e150), as soon as one of its adb pairs meets it. The body's
+  /// adb pairs are skipped and their manifolds emptied, so that the solver carries no NaN
+  /// to the bodies it touches; lastFrameStats() names the body too. The callback must not
+  /// throw: an exception from it is swallowed (none may leave Bullet's step).
+  void setBadPoseCallback(std::function<void(const BadPose&)> callback);
+  /// Internal: an adb algorithm met `body` with an unusable pose.
+  void reportBadPose(const btCollisionObject* body, PoseDefect defect);
+
   void dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
                                  const btDispatcherInfo& info, btDispatcher* dispatcher) override;
 
@@ -48,6 +58,7 @@ class Dispatcher : public btCollisionDispatcher {
  private:
   FrameSettings m_settings;
   std::unique_ptr<detail::FrameScheduler> m_scheduler;
+  std::function<void(const BadPose&)> m_badPoseCallback;
 };
 
 }  // namespace adb

@@ -15,6 +15,10 @@
 #include <cstdint>
 #include <limits>
 
+#include "adb/core/query.h"  // PoseDefect
+
+class btCollisionObject;
+
 namespace adb {
 
 struct FrameSettings {
@@ -42,8 +46,22 @@ struct FrameSettings {
   double softCfm = 1e-3;
 };
 
+/// A body whose pose adb could not use in a step: its adb pairs were skipped (no contacts,
+/// its manifolds emptied) and the world went on.
+struct BadPose {
+  const btCollisionObject* body = nullptr;
+  int bodyIndex = -1;           ///< btCollisionObject::getWorldArrayIndex()
+  void* userPointer = nullptr;  ///< btCollisionObject::getUserPointer()
+  PoseDefect defect = PoseDefect::None;
+};
+
 /// What the last step did with the mesh-mesh pairs it met.
 struct FrameStats {
+  /// Bodies with a pose adb could not use this step (all counted, the first few named).
+  static constexpr int kNamedBadPoses = 4;
+  std::uint32_t badPoseBodies = 0;
+  BadPose badPoses[kNamedBadPoses];
+
   std::uint32_t pairs = 0;          ///< mesh-mesh pairs whose boxes overlapped
   std::uint32_t exactPairs = 0;     ///< decided exactly: traversal completed
   std::uint32_t qualityPairs = 0;   ///< stopped at the quality target (k_min above p_min)

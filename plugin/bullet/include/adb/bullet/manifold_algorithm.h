@@ -35,6 +35,10 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   }
 
  protected:
+  /// Whether both bodies' poses are usable (adb/core/query.h, poseDefect). When one is not,
+  /// the pair's manifold is emptied (its points would carry the bad pose into the solver)
+  /// and the body is reported to an adb::Dispatcher: the caller skips the pair.
+  bool acceptPoses(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
   /// The pair's manifold (made on first use), set as `result`'s.
   btPersistentManifold* manifoldFor(const btCollisionObjectWrapper* body0,
                                     const btCollisionObjectWrapper* body1,

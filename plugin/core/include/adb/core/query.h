@@ -213,6 +213,20 @@ class PoseError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// What makes a pose unusable, if anything: the checks collide() and Traversal::reset()
+/// make (and throw PoseError for), without throwing. A physics engine checks its bodies
+/// with it once per step.
+enum class PoseDefect {
+  None,
+  NonFinite,       ///< a NaN or infinite entry
+  TooFar,          ///< a translation beyond 1e150 (the largest coordinate meshes may hold)
+  NotOrthonormal,  ///< |R^T R - I| > 1e-6: scaled, sheared or drifted; rotations are
+                   ///< inverted by transposing
+};
+PoseDefect poseDefect(const Pose& pose);
+/// One line saying what is wrong ("has a non-finite entry", ...); empty for None.
+const char* describe(PoseDefect defect);
+
 /// Tests tree `a` at `poseA` against tree `b` at `poseB` (poses map each mesh's own
 /// coordinates to the world). Throws SettingsError for invalid settings (pMin outside [0, 1],
 /// kMin < 1, NaN or negative budget, negative regionDepth) and PoseError for a bad pose

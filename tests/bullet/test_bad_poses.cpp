@@ -1,0 +1,120 @@
+// A body with a pose adb cannot use (NaN, a scaled basis) in a world of adb meshes: nothing
+// leaves the step, the body is named (FrameStats and the callback) once per step, its adb
+// pairs are skipped and no NaN reaches the bodies around it.
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "adb/core/mesh_generators.h"
+#include "bullet_world.h"
+
+namespace adb {
+namespace {
+
+using test::World;
+
+bool finite(const btRigidBody& b) {
+  const btTransform& t = b.getWorldTransform();
+  for (int r = 0; r < 3; ++r) {
+    if (!std::isfinite(t.getBasis()[r].length2())) return false;
+  }
+  return std::isfinite(t.getOrigin().length2()) &&
+         std::isfinite(b.getLinearVelocity().length2()) &&
+         std::isfinite(b.getAngularVelocity().length2());
+}
+
+struct BadPoseScene {
+  World world;
+  btRigidBody* ground;
+  std::vector<btRigidBody*> tori;
+  std::vector<BadPose> reported;  // by the callback, this step
+
+  BadPoseScene() {
+    ground = world.add(std::make_unique<btBoxShape>(btVector3(5, 0.5, 5)), 0,
+                       btVector3(0, -0.5, 0));
+    const auto torus = MeshData::build(gen::makeTorus(0.5, 0.2, 32, 16));
+    // Lying flat, a little apart: each rests on the box floor; the first two overlap.
+    for (int i = 0; i < 4; ++i) {
+      btRigidBody* b = world.add(torus, 1, btVector3(btScalar(1.3 * i - 2), btScalar(0.19), 0));
+      btTransform t = b->getWorldTransform();
+      t.setRotation(btQuaternion(btVector3(1, 0, 0), btScalar(M_PI / 2)));
+      b->setWorldTransform(t);
+      b->setUserPointer(reinterpret_cast<void*>(static_cast<std::uintptr_t>(100 + i)));
+      tori.push_back(b);
+    }
+    world.adbDispatcher->setBadPoseCallback(
+        [this](const BadPose& bad) { reported.push_back(bad); });
+  }
+  void step() {
+    reported.clear();
+    world.step();
+  }
+};
+
+TEST(BadPoses, ANaNBodyIsNamedOncePerStepAndItsNeighboursStayFinite) {
+  BadPoseScene scene;
+  for (int i = 0; i < 30; ++i) scene.step();  // settle
+  btRigidBody* bad = scene.tori[1];
+  btTransform t = bad->getWorldTransform();
+  t.setOrigin(btVector3(std::numeric_limits<btScalar>::quiet_NaN(), 0, 0));
+  bad->setWorldTransform(t);
+  for (int i = 0; i < 60; ++i) {
+    ASSERT_NO_THROW(scene.step());
+    const FrameStats& stats = scene.world.adbDispatcher->lastFrameStats();
+    // Its pairs with the floor and with torus 0 meet it: named once, by index and pointer.
+    ASSERT_EQ(stats.badPoseBodies, 1u) << "step " << i;
+    EXPECT_EQ(stats.badPoses[0].body, bad);
+    EXPECT_EQ(stats.badPoses[0].bodyIndex, bad->getWorldArrayIndex());
+    EXPECT_EQ(stats.badPoses[0].userPointer, bad->getUserPointer());
+    EXPECT_EQ(stats.badPoses[0].defect, PoseDefect::NonFinite);
+    ASSERT_EQ(scene.reported.size(), 1u);
+    EXPECT_EQ(scene.reported[0].body, bad);
+    for (btRigidBody* b : scene.tori) {
+      if (b != bad) {
+        EXPECT_TRUE(finite(*b)) << "torus " << (b - bad);
+      }
+    }
+  }
+  // The others still rest on the floor: none fell through or was pushed away.
+  for (btRigidBody* b : scene.tori) {
+    if (b == bad) continue;
+    EXPECT_GT(b->getWorldTransform().getOrigin().y(), 0.1);
+    EXPECT_LT(b->getWorldTransform().getOrigin().y(), 0.4);
+  }
+}
+
+// Bullet's integration re-orthonormalises a dynamic body's basis at the end of a step: the
+// scaled basis is written again before every step, as broken user code would.
+TEST(BadPoses, AScaledBasisIsRefusedAndTheRestGoesOn) {
+  BadPoseScene scene;
+  btRigidBody* bad = scene.tori[3];
+  for (int i = 0; i < 20; ++i) {
+    btTransform t = bad->getWorldTransform();
+    t.setBasis(btMatrix3x3(t.getRotation()) * btScalar(2));
+    bad->setWorldTransform(t);
+    ASSERT_NO_THROW(scene.step());
+    const FrameStats& stats = scene.world.adbDispatcher->lastFrameStats();
+    ASSERT_EQ(stats.badPoseBodies, 1u) << "step " << i;
+    EXPECT_EQ(stats.badPoses[0].defect, PoseDefect::NotOrthonormal);
+    EXPECT_EQ(stats.badPoses[0].userPointer, reinterpret_cast<void*>(std::uintptr_t{103}));
+  }
+  for (btRigidBody* b : scene.tori) EXPECT_TRUE(finite(*b));
+}
+
+TEST(BadPoses, ACallbackThatThrowsDoesNotEscapeTheStep) {
+  BadPoseScene scene;
+  scene.world.adbDispatcher->setBadPoseCallback(
+      [](const BadPose&) { throw std::runtime_error("user callback"); });
+  btTransform t = scene.tori[0]->getWorldTransform();
+  t.setOrigin(btVector3(0, std::numeric_limits<btScalar>::infinity(), 0));
+  scene.tori[0]->setWorldTransform(t);
+  EXPECT_NO_THROW(for (int i = 0; i < 3; ++i) scene.step());
+  EXPECT_EQ(scene.world.adbDispatcher->lastFrameStats().badPoseBodies, 1u);
+}
+
+}  // namespace
+}  // namespace adb
