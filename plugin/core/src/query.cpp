@@ -93,7 +93,9 @@ void validatePose(const Pose& p, const char* which) {
   if (defect == PoseDefect::None) return;
   std::string why = describe(defect);
   if (defect == PoseDefect::TooFar) {
-    why += " (" + detail::formatNumber(p.translation.cwiseAbs().maxCoeff()) + ")";
+    why = "has a translation of " + detail::formatNumber(p.translation.cwiseAbs().maxCoeff()) +
+          "; poses are supported up to " + detail::formatNumber(detail::kMaxCoordinate) +
+          " from the origin";
   } else if (defect == PoseDefect::NotOrthonormal) {
     why += " (|R^T R - I| = " +
            detail::formatNumber(
