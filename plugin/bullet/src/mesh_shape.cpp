@@ -2,8 +2,10 @@
 #include "adb/bullet/mesh_shape.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
+#include "adb/bullet/warnings.h"
 #include "adb/core/box_query.h"
 #include "conversions.h"
 
@@ -27,14 +29,48 @@ int facingOf(const TriangleMesh& mesh, const MassProperties& mass) {
   return volume6 > 0.0 ? 1 : volume6 < 0.0 ? -1 : 0;
 }
 
+// The principal frame in mesh coordinates: origin at the centre of mass, axes the principal
+// axes. computeMassProperties promises det +1; a reflection would mirror the mesh and turn
+// its winding inside out, so one is corrected here rather than trusted.
+Pose principalPose(const MassProperties& mass) {
+  Pose p{mass.principalAxes, mass.centerOfMass};
+  if (p.rotation.determinant() < 0.0) p.rotation.col(2) = -p.rotation.col(2);
+  return p;
+}
+
+// Builds the data of `mesh`, moved to its principal frame if asked; `meshFromShape` is where
+// `mesh`'s own frame already is in the original coordinates (a scaled copy keeps its
+// parent's).
+std::shared_ptr<const MeshData> buildData(TriangleMesh mesh, const BuildSettings& settings,
+                                          ShapeFrame frame, const Pose& meshFromShape) {
+  MassProperties mass = computeMassProperties(mesh);
+  // A proper rotation keeps the sign of the volume: the winding is read before moving.
+  const int facing = facingOf(mesh, mass);
+  Pose offset = meshFromShape;
+  if (frame == ShapeFrame::Principal) {
+    const Pose p = principalPose(mass);
+    std::vector<Vec3> v = mesh.vertices();
+    for (Vec3& x : v) x = p.rotation.transpose() * (x - p.translation);
+    mesh = TriangleMesh(std::move(v), mesh.triangles(), mesh.name());
+    // The mass properties are moved rather than recomputed: the centre is then exactly the
+    // origin and the tensor exactly diagonal (a recomputation returns rounding noise, and
+    // axes possibly turned by 180 degrees).
+    mass.centerOfMass = Vec3::Zero();
+    mass.inertia = mass.principalMoments.asDiagonal();
+    mass.principalAxes = Mat3::Identity();
+    offset = Pose{meshFromShape.rotation * p.rotation,
+                  meshFromShape.rotation * p.translation + meshFromShape.translation};
+  }
+  AdbTree tree(mesh, settings);
+  return std::make_shared<const MeshData>(
+      MeshData{std::move(mesh), std::move(tree), mass, facing, offset, {}});
+}
+
 }  // namespace
 
-std::shared_ptr<const MeshData> MeshData::build(TriangleMesh mesh, const BuildSettings& settings) {
-  AdbTree tree(mesh, settings);
-  MassProperties mass = computeMassProperties(mesh);
-  const int facing = facingOf(mesh, mass);
-  return std::make_shared<const MeshData>(
-      MeshData{std::move(mesh), std::move(tree), mass, facing});
+std::shared_ptr<const MeshData> MeshData::build(TriangleMesh mesh, const BuildSettings& settings,
+                                                ShapeFrame frame) {
+  return buildData(std::move(mesh), settings, frame, Pose{});
 }
 
 MeshShape::MeshShape(std::shared_ptr<const MeshData> data) : m_data(std::move(data)) {
@@ -60,24 +96,49 @@ void MeshShape::setLocalScaling(const btVector3& scaling) {
   if (!s.allFinite() || (s.array() <= 0.0).any()) {
     throw SettingsError("MeshShape::setLocalScaling: the scaling must be positive and finite");
   }
-  m_scaling = scaling;
-  if (s == Vec3::Ones()) {
-    m_scaled.reset();
-    return;
+  // Everything that can throw comes first; the commit below is two no-throw assignments
+  // (strong guarantee: a failed build leaves scaling, tree and data as they were).
+  std::shared_ptr<const MeshData> scaled;
+  if (s != Vec3::Ones()) {
+    // A scaled mesh needs its own tree: boxes, slabs and cell counts all change with it. The
+    // scale applies in the shape's frame, so the offset to the original mesh is the parent's.
+    std::vector<Vec3> v = m_data->mesh.vertices();
+    for (Vec3& x : v) x = x.cwiseProduct(s);
+    scaled = buildData(TriangleMesh(std::move(v), m_data->mesh.triangles(),
+                                    m_data->mesh.name() + " (scaled)"),
+                       m_data->tree.settings(), ShapeFrame::Mesh, m_data->meshFromShape);
   }
-  // A scaled mesh needs its own tree: boxes, slabs and cell counts all change with it.
-  std::vector<Vec3> v = m_data->mesh.vertices();
-  for (Vec3& x : v) x = x.cwiseProduct(s);
-  m_scaled = MeshData::build(TriangleMesh(std::move(v), m_data->mesh.triangles(),
-                                          m_data->mesh.name() + " (scaled)"),
-                             m_data->tree.settings());
+  m_scaled = std::move(scaled);
+  m_scaling = scaling;
 }
 
 void MeshShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const {
   // Bullet reads the result as the diagonal of the inertia tensor in the shape's frame: exact
   // when that frame is the principal frame (see principalTransform), the best diagonal
-  // otherwise.
-  inertia = toBt(data().mass.inertia.diagonal()) * mass;
+  // otherwise. Bullet gives no other place to say so, hence the warning.
+  const MeshData& d = data();
+  const MassProperties& m = d.mass;
+  // 1e-6 relative: a recomputed principal frame (a scaled copy) is off by rounding only, and
+  // an offset below this moves a body's dynamics by less than Bullet's own float rounding.
+  constexpr double kPrincipalTolerance = 1e-6;
+  Mat3 offDiagonal = m.inertia;
+  offDiagonal.diagonal().setZero();
+  const double offCentre = m.centerOfMass.norm() / d.mesh.bounds().extent().norm();
+  const double offAxes = offDiagonal.cwiseAbs().maxCoeff() /
+                         m.inertia.diagonal().cwiseAbs().maxCoeff();
+  // Written so that 0/0 (a point mass, a mesh of one point) counts as principal.
+  const bool principal = !(offCentre > kPrincipalTolerance) && !(offAxes > kPrincipalTolerance);
+  if (!principal && d.inertiaWarning.raise()) {
+    std::ostringstream message;
+    message << "MeshShape '" << d.mesh.name() << "': calculateLocalInertia in a frame that is "
+            << "not the principal frame (centre of mass " << offCentre << " of the mesh's "
+            << "size off the origin, off-diagonal inertia " << offAxes << " of the largest "
+            << "moment); the body will turn about the wrong point and axes. Build the "
+            << "MeshData with adb::ShapeFrame::Principal, or put the shape in a "
+            << "btCompoundShape at principalTransform().inverse()";
+    warn(message.str());
+  }
+  inertia = toBt(m.inertia.diagonal()) * mass;
 }
 
 btTransform MeshShape::principalTransform() const {

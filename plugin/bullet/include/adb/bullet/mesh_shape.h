@@ -4,11 +4,17 @@
 // Its shape type is CUSTOM_CONCAVE_SHAPE_TYPE, which equals SDF_SHAPE_PROXYTYPE in Bullet
 // 3.24: Bullet's own convex-concave algorithm would cast it to btSdfCollisionShape, so a world
 // using MeshShape must register adb's algorithms for every pair type it can meet (the
-// registration call does). The shape's frame is the mesh's own coordinate frame.
+// registration call does).
+//
+// The shape's frame is the mesh's own coordinate frame by default, or on request its principal
+// frame (MeshData::build with ShapeFrame::Principal), which is what Bullet's rigid bodies assume:
+// centre of mass at the origin, inertia diagonal. MeshData::meshFromShape keeps the way back
+// to the original coordinates, for placing a rendered mesh.
 #pragma once
 
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
+#include <atomic>
 #include <memory>
 
 #include "adb/bullet/precision.h"
@@ -18,18 +24,49 @@
 
 namespace adb {
 
+/// The frame a MeshData's vertices are expressed in (the shape's frame).
+enum class ShapeFrame {
+  Mesh,       ///< the mesh's own coordinates, unchanged
+  Principal,  ///< centre of mass at the origin, principal axes along x, y, z (moments ascending)
+};
+
+namespace detail {
+/// A flag raised at most once, from any thread (a warning given once per MeshData). Copies
+/// start lowered, so MeshData stays copyable and movable.
+class OnceFlag {
+ public:
+  OnceFlag() = default;
+  OnceFlag(const OnceFlag&) noexcept {}
+  OnceFlag& operator=(const OnceFlag&) noexcept { return *this; }
+  /// True the first time only.
+  bool raise() const noexcept { return !m_raised.exchange(true, std::memory_order_relaxed); }
+
+ private:
+  mutable std::atomic<bool> m_raised{false};
+};
+}  // namespace detail
+
 /// The data many MeshShapes share: the mesh, its tree and its mass properties. Immutable.
 struct MeshData {
-  TriangleMesh mesh;
+  TriangleMesh mesh;  ///< in the shape's frame
   AdbTree tree;
-  MassProperties mass;
+  MassProperties mass;  ///< in the shape's frame
   /// Which way the triangles face: +1 closed and wound outward, -1 closed and wound inward,
   /// 0 open (its triangles are two-sided to contact generation).
   int facing = 0;
+  /// The shape's frame in the original mesh's coordinates: x_mesh = rotation * x_shape +
+  /// translation (proper rotation). The identity for ShapeFrame::Mesh. A rendered mesh in its
+  /// original coordinates goes at body transform * inverse(meshFromShape); under
+  /// setLocalScaling, x_shape is the shape's unscaled coordinates.
+  Pose meshFromShape;
+  detail::OnceFlag inertiaWarning;  ///< calculateLocalInertia warns once per MeshData
 
-  /// Builds the tree and the mass properties (throws MeshError/SettingsError at the door).
+  /// Builds the tree and the mass properties (throws MeshError/SettingsError at the door),
+  /// in the mesh's own frame or, with ShapeFrame::Principal, in its principal frame (the
+  /// vertices moved there: a body's centre of mass and axes are then the shape's own).
   static std::shared_ptr<const MeshData> build(TriangleMesh mesh,
-                                               const BuildSettings& settings = {});
+                                               const BuildSettings& settings = {},
+                                               ShapeFrame frame = ShapeFrame::Mesh);
 };
 
 class MeshShape : public btConcaveShape {
@@ -46,23 +83,40 @@ class MeshShape : public btConcaveShape {
   void getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const override;
   /// Scales the mesh per axis (positive, finite; throws SettingsError otherwise). A scale
   /// other than (1, 1, 1) builds this shape's own scaled tree once: the shared one stays.
+  /// Strong guarantee: if that build throws (MeshError: the scaled mesh beyond what a tree
+  /// holds), the shape is unchanged.
   void setLocalScaling(const btVector3& scaling) override;
   const btVector3& getLocalScaling() const override { return m_scaling; }
   /// The diagonal of the inertia tensor of a body of this mass about its centre of mass, in
   /// the shape's axes. Bullet's rigid bodies assume the shape's frame is the principal frame
-  /// (centre of mass at the origin, diagonal tensor); where it is not, put the shape in a
-  /// btCompoundShape at principalTransform().inverse(). Closed meshes integrate their
-  /// volume; open ones are treated as thin shells.
+  /// (centre of mass at the origin, diagonal tensor): exact for data built with
+  /// ShapeFrame::Principal. Otherwise, if the centre of mass is off the origin or the tensor
+  /// off diagonal (beyond 1e-6 relative), warns once per MeshData through adb::warn
+  /// (adb/bullet/warnings.h), since the body would turn about the wrong point; a shape
+  /// kept in the mesh frame goes in a btCompoundShape at principalTransform().inverse().
+  /// Closed meshes integrate their volume; open ones are treated as thin shells.
   void calculateLocalInertia(btScalar mass, btVector3& inertia) const override;
   const char* getName() const override { return "AdbMesh"; }
+
+  // --- serialization (mesh_serialization.cpp) -------------------------------------------
+  /// Written as Bullet's btTriangleMeshShapeData, so that btDefaultSerializer keeps the mesh:
+  /// Bullet's btBulletWorldImporter reads it back as a btBvhTriangleMeshShape, and
+  /// adb::loadMeshShapes (adb/bullet/mesh_serialization.h) as a MeshShape.
+  int calculateSerializeBufferSize() const override;
+  /// The unscaled mesh (vertices as doubles, 32-bit indices, one part), the local scaling
+  /// (as float: Bullet's format) and the margin; no tree (rebuilt on load) and no
+  /// meshFromShape. Throws MeshError, through Bullet's serializer, for a mesh beyond the
+  /// format's 32-bit chunk sizes (about 67M vertices or 178M triangles).
+  const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 
   // --- btConcaveShape --------------------------------------------------------------------
   /// Calls back every triangle in a leaf whose box overlaps the given box (shape frame).
   void processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
                            const btVector3& aabbMax) const override;
 
-  /// Centre of mass and principal axes in the shape's frame. A body whose shape frame is not
-  /// its principal frame puts the shape in a btCompoundShape with the inverse of this.
+  /// Centre of mass and principal axes in the shape's frame (the identity, to rounding, for
+  /// ShapeFrame::Principal). A body whose shape frame is not its principal frame puts the
+  /// shape in a btCompoundShape with the inverse of this.
   btTransform principalTransform() const;
 
  private:
