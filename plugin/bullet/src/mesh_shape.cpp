@@ -1,6 +1,8 @@
 // MeshShape: the Bullet-facing shape over a shared ADB-tree.
 #include "adb/bullet/mesh_shape.h"
 
+#include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
+
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -154,6 +156,17 @@ btTransform MeshShape::principalTransform() const {
 
 void MeshShape::processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
                                     const btVector3& aabbMax) const {
+  // Casts (rayTest, convexSweepTest, CCD) walk the tree along the cast instead of taking
+  // every triangle in the box around it (mesh_casts.cpp). dynamic_cast: Bullet's callbacks
+  // are local classes of btCollisionWorld.cpp, known only by these bases.
+  if (auto* ray = dynamic_cast<btTriangleRaycastCallback*>(callback)) {
+    performRaycast(ray);
+    return;
+  }
+  if (auto* sweep = dynamic_cast<btTriangleConvexcastCallback*>(callback)) {
+    performConvexcast(sweep);
+    return;
+  }
   const AdbTree& t = tree();
   const auto& verts = t.localVertices();
   forEachTriangleNear(t, Aabb{fromBt(aabbMin), fromBt(aabbMax)}, [&](std::uint32_t i) {

@@ -22,6 +22,9 @@
 #include "adb/core/mesh.h"
 #include "adb/core/tree.h"
 
+class btTriangleRaycastCallback;
+class btTriangleConvexcastCallback;
+
 namespace adb {
 
 /// The frame a MeshData's vertices are expressed in (the shape's frame).
@@ -111,8 +114,32 @@ class MeshShape : public btConcaveShape {
 
   // --- btConcaveShape --------------------------------------------------------------------
   /// Calls back every triangle in a leaf whose box overlaps the given box (shape frame).
+  /// Bullet's rayTest and convexSweepTest reach a custom concave shape only through here,
+  /// with the box around the whole ray or sweep; a btTriangleRaycastCallback or a
+  /// btTriangleConvexcastCallback is recognised and sent to performRaycast or
+  /// performConvexcast instead (the box is then ignored: the cast defines the query).
   void processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
                            const btVector3& aabbMax) const override;
+
+  /// The ray callback->m_from -> m_to (shape frame) through the tree, nearest leaf first,
+  /// skipping leaves entered beyond callback->m_hitFraction (which each hit lowers). Each
+  /// candidate goes to callback->processTriangle with part 0 and the mesh's triangle index
+  /// and vertices, as btBvhTriangleMeshShape::performRaycast reports them: same hits.
+  void performRaycast(btTriangleRaycastCallback* callback) const;
+  /// The convex sweep callback->m_convexShape from m_convexShapeFrom to m_convexShapeTo
+  /// (world; the mesh at m_triangleToWorld) through the tree, nearest leaf first. Each
+  /// candidate triangle gets the cast btTriangleConvexcastCallback::processTriangle makes
+  /// (btContinuousConvexCollision, same margin and allowed penetration), run here so that
+  /// its fraction is known: hits below the bound go to callback->reportHit, and the bound
+  /// becomes the smallest of m_hitFraction and reportHit's return values (the closest hit
+  /// for Bullet's closest-hit callbacks; unchanged for callbacks that collect every hit).
+  /// An override of processTriangle in a subclass is therefore not called. A sweep that
+  /// rotates is bounded by the convex's angular-motion sphere, so no rotation is refused.
+  /// CCD: btDiscreteDynamicsWorld sweeps a convex body's CCD sphere with convexSweepTest,
+  /// which comes here, so a fast convex body does not tunnel through a MeshShape. A body
+  /// whose own shape is a MeshShape gets no CCD: Bullet sweeps only convex bodies and
+  /// ignores the CCD settings of others (give such a body a convex proxy or smaller steps).
+  void performConvexcast(btTriangleConvexcastCallback* callback) const;
 
   /// Centre of mass and principal axes in the shape's frame (the identity, to rounding, for
   /// ShapeFrame::Principal). A body whose shape frame is not its principal frame puts the
