@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/mesh.h"
 #include "triangle_arrays.h"

@@ -10,7 +10,7 @@
 
 #include "common/triangle_arrays.h"
 #include "adb/bullet/dispatcher.h"
-#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/benchmark_poses.h"
 #include "adb/core/mass_properties.h"

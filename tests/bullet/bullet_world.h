@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "adb/bullet/dispatcher.h"
-#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
 
 namespace adb::test {

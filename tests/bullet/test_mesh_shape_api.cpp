@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_serialization.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/bullet/warnings.h"

@@ -1,15 +1,19 @@
-// adb::Dispatcher: Bullet's dispatch, then the step's budget spent across mesh-mesh pairs.
+// adb::Dispatcher: Bullet's dispatch, then the step's budget spent across adb's pairs.
 #include "adb/bullet/dispatcher.h"
 
 #include <cmath>
 #include <string>
 #include <utility>
 
-#include "adb/bullet/mesh_mesh_algorithm.h"
 #include "adb/core/tree.h"
 #include "frame_scheduler.h"
 
 namespace adb {
+
+detail::FrameScheduler& detail::schedulerOf(Dispatcher& dispatcher) {
+  return *dispatcher.m_scheduler;
+}
+
 namespace {
 
 void require(bool ok, const char* field, double value, const char* rule) {
@@ -44,17 +48,7 @@ void Dispatcher::setFrameSettings(const FrameSettings& s) {
 const FrameStats& Dispatcher::lastFrameStats() const { return m_scheduler->stats(); }
 
 void Dispatcher::setBadPoseCallback(std::function<void(const BadPose&)> callback) {
-  m_badPoseCallback = std::move(callback);
-}
-
-void Dispatcher::reportBadPose(const btCollisionObject* body, PoseDefect defect) {
-  const BadPose* first = m_scheduler->noteBadPose(body, defect);
-  if (!first || !m_badPoseCallback) return;
-  try {
-    m_badPoseCallback(*first);
-  } catch (...) {
-    // Nothing may leave Bullet's step; the body is named in lastFrameStats() all the same.
-  }
+  m_scheduler->setBadPoseCallback(std::move(callback));
 }
 
 void Dispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
@@ -62,7 +56,7 @@ void Dispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
                                            btDispatcher* dispatcher) {
   m_scheduler->begin();
   btCollisionDispatcher::dispatchAllCollisionPairs(pairCache, info, dispatcher);
-  m_scheduler->run(m_settings);
+  m_scheduler->run(m_settings, info);
 }
 
 }  // namespace adb

@@ -1,11 +1,14 @@
-// FrameScheduler: one step's budget spent across its mesh-mesh pairs, then their contacts.
+// FrameScheduler: one step's budget spent across its adb pairs, then their contacts.
 #include "frame_scheduler.h"
+
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "adb/bullet/mesh_mesh_algorithm.h"
+#include "manifold_algorithm.h"
+#include "mesh_mesh_algorithm.h"
 
 namespace adb::detail {
 namespace {
@@ -17,6 +20,9 @@ constexpr std::uint64_t kFirstGrant = 256;
 // spend the step on the queries' fixed costs (and, best first, on restarts).
 constexpr std::uint64_t kMinGrowth = 64;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+// What a whole pair (mesh against a convex shape, a plane, ...) never run is expected to
+// cost: a few nodes and triangles, so that a tight budget is not overrun at first contact.
+constexpr std::uint64_t kFirstWholeWork = 32;
 // Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
 // count most, one odd step does not swing the next step's shares.
 constexpr double kSmoothing = 0.2;
@@ -57,25 +63,55 @@ double doubtOf(const std::vector<OpenPair>& open) {
 
 }  // namespace
 
+MeshMeshAlgorithm& DeferredPair::meshMesh() const {
+  return static_cast<MeshMeshAlgorithm&>(*algorithm);
+}
+
+PairWrappers::PairWrappers(const DeferredPair& pair)
+    : body0(nullptr, pair.shape0, pair.object0, pair.transform0, pair.partId0, pair.index0),
+      body1(nullptr, pair.shape1, pair.object1, pair.transform1, pair.partId1, pair.index1) {}
+
 void FrameScheduler::begin() {
+  ++m_step;
   m_pairs.clear();
+  m_wholes.clear();
   m_badBodies.clear();
   m_badNamed = 0;
   m_collecting = true;
 }
 
-const BadPose* FrameScheduler::noteBadPose(const btCollisionObject* body, PoseDefect defect) {
-  if (std::find(m_badBodies.begin(), m_badBodies.end(), body) != m_badBodies.end()) {
-    return nullptr;
-  }
-  m_badBodies.push_back(body);
-  m_badPose = BadPose{body, body->getWorldArrayIndex(), body->getUserPointer(), defect};
-  if (m_badNamed < FrameStats::kNamedBadPoses) m_badNamedPoses[m_badNamed++] = m_badPose;
-  return &m_badPose;
+void FrameScheduler::defer(ManifoldAlgorithm* algorithm, const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1) {
+  DeferredPair pair{algorithm,
+                    body0->getCollisionObject(),
+                    body1->getCollisionObject(),
+                    body0->getCollisionShape(),
+                    body1->getCollisionShape(),
+                    body0->getWorldTransform(),
+                    body1->getWorldTransform(),
+                    body0->m_partId,
+                    body0->m_index,
+                    body1->m_partId,
+                    body1->m_index};
+  (algorithm->refinable() ? m_pairs : m_wholes).push_back(pair);
 }
 
-void FrameScheduler::run(const FrameSettings& settings) {
+void FrameScheduler::noteBadPose(const btCollisionObject* body, PoseDefect defect) {
+  if (std::find(m_badBodies.begin(), m_badBodies.end(), body) != m_badBodies.end()) return;
+  m_badBodies.push_back(body);
+  const BadPose bad{body, body->getWorldArrayIndex(), body->getUserPointer(), defect};
+  if (m_badNamed < FrameStats::kNamedBadPoses) m_badNamedPoses[m_badNamed++] = bad;
+  if (!m_badPoseCallback) return;
+  try {
+    m_badPoseCallback(bad);
+  } catch (...) {
+    // Nothing may leave Bullet's step; the body is named in FrameStats all the same.
+  }
+}
+
+void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& info) {
   m_collecting = false;
+  m_info = &info;
   m_start = Clock::now();
   m_stats = FrameStats{};
   m_stats.pairs = static_cast<std::uint32_t>(m_pairs.size());
@@ -83,9 +119,18 @@ void FrameScheduler::run(const FrameSettings& settings) {
   std::copy(m_badNamedPoses, m_badNamedPoses + m_badNamed, m_stats.badPoses);
   m_unqueried = m_pairs.size();
   m_undecided = 0;
+  m_stats.otherPairs = static_cast<std::uint32_t>(m_wholes.size());
+  // Whole pairs the budget skipped run first next time (the longest waiting first): kept
+  // contacts hold a body only while it barely moves. A stable order keeps node-pair
+  // budgets reproducible.
+  std::stable_sort(m_wholes.begin(), m_wholes.end(),
+                   [](const DeferredPair& x, const DeferredPair& y) {
+                     return x.algorithm->lastRun() < y.algorithm->lastRun();
+                   });
   firstPass(settings);
   refine(settings);
   writeContacts(settings);
+  keepSkipped();
   m_stats.micros = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
   updateMargin(settings);
 }
@@ -147,8 +192,8 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   }
   StepBudget budget;
   if (!unbudgeted(settings)) budget = StepBudget{grant, micros};
-  const QueryResult& r = pair.algorithm->query(pair, q, budget, resume);
-  const StepWork& work = pair.algorithm->lastStep();
+  const QueryResult& r = pair.meshMesh().query(pair, q, budget, resume);
+  const StepWork& work = pair.meshMesh().lastStep();
   if (work.nodePairs >= kFirstGrant && work.seconds > 0.0) {  // long enough to measure
     const double perPair = work.seconds * 1e6 / static_cast<double>(work.nodePairs);
     m_microsPerNodePair += kSmoothing * (perPair - m_microsPerNodePair);
@@ -170,7 +215,7 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
       pair.confidence = r.confidence;
       break;
     default:
-      pair.confidence = 1.0 - doubtOf(pair.algorithm->openPairs());
+      pair.confidence = 1.0 - doubtOf(pair.meshMesh().openPairs());
       break;
   }
   // Leaf pairs cost triangle tests, not node pairs, and some popped pairs cost neither: all
@@ -187,13 +232,27 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
 void FrameScheduler::firstPass(const FrameSettings& settings) {
   std::uint64_t anchoredPairs = 0;
   for (const DeferredPair& p : m_pairs) anchoredPairs += anchored(p) ? 1 : 0;
+  for (const DeferredPair& p : m_wholes) anchoredPairs += anchored(p) ? 1 : 0;
+  const std::uint64_t all = m_pairs.size() + m_wholes.size();
   for (bool group : {true, false}) {
-    std::uint64_t waiting = group ? anchoredPairs : m_pairs.size() - anchoredPairs;
+    std::uint64_t waiting = group ? anchoredPairs : all - anchoredPairs;
+    // The whole pairs first (a box floor, a plane, a convex body: settled in one run).
+    // Those with a static body may take all that is left, the others their share; a pair
+    // that does not fit is left for the refinement, and if it does not run this step it
+    // keeps its last contacts and goes first next step.
+    for (DeferredPair& pair : m_wholes) {
+      if (anchored(pair) != group) continue;
+      const double micros = microsLeft(settings);
+      const std::uint64_t among = group ? 1 : waiting;
+      runWhole(pair, share(settings, among),
+               std::isinf(micros) ? micros : micros / static_cast<double>(among));
+      --waiting;
+    }
     for (DeferredPair& pair : m_pairs) {
       if (anchored(pair) != group) continue;
       // What it needed last step and a quarter more (a pair's need grows while bodies
       // settle into each other), at least a few levels of both trees.
-      const std::uint64_t last = pair.algorithm->needed();
+      const std::uint64_t last = pair.meshMesh().needed();
       const std::uint64_t wanted = std::max(last + last / 4, kFirstGrant);
       // The time cap is what is left of the step: the share is in the grant.
       query(pair, std::min(wanted, share(settings, waiting)), microsLeft(settings), settings,
@@ -211,10 +270,47 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
   }
 }
 
+bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, double microsShare) {
+  // Its cost last time and a quarter more (bodies settling into each other touch more
+  // triangles step by step), at least a few nodes for a pair never run.
+  const std::uint64_t last = pair.algorithm->lastWork();
+  const std::uint64_t expected = std::max(last + last / 4, kFirstWholeWork);
+  if (expected > shareUnits ||
+      static_cast<double>(expected) * m_microsPerWholeUnit > microsShare) {
+    return false;
+  }
+  PairWrappers wrappers(pair);
+  btManifoldResult result(&wrappers.body0, &wrappers.body1);
+  const Clock::time_point start = Clock::now();
+  const std::uint64_t work =
+      pair.algorithm->collideScheduled(&wrappers.body0, &wrappers.body1, *m_info, &result, m_step);
+  const double micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  if (work >= kFirstGrant && micros > 0.0) {  // long enough to measure
+    m_microsPerWholeUnit += kSmoothing * (micros / static_cast<double>(work) - m_microsPerWholeUnit);
+  }
+  m_stats.nodePairs += work;
+  pair.written = true;
+  return true;
+}
+
+void FrameScheduler::keepSkipped() {
+  for (DeferredPair& pair : m_wholes) {
+    m_stats.neededNodePairs += pair.algorithm->lastWork();
+    if (pair.written) continue;
+    PairWrappers wrappers(pair);
+    pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
+    ++m_stats.otherKeptPairs;
+  }
+}
+
 // While budget is left, the least certain pair gets as much again as it had: resumed depth
 // first, re-run best first (ties: pairs with a static body, then the earlier pair, so that
 // node-pair budgets stay reproducible).
 void FrameScheduler::refine(const FrameSettings& settings) {
+  // Whole pairs that did not fit their share: in turn, while what is left covers them.
+  for (DeferredPair& pair : m_wholes) {
+    if (!pair.written) runWhole(pair, share(settings, 1), microsLeft(settings));
+  }
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (!m_pairs[i].decided()) m_order.push_back(i);
@@ -262,7 +358,7 @@ void FrameScheduler::refine(const FrameSettings& settings) {
 // Writes a pair's contacts and measures the time it took.
 double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settings) {
   const Clock::time_point start = Clock::now();
-  const ContactCount c = pair.algorithm->writeContacts(pair, settings);
+  const ContactCount c = pair.meshMesh().writeContacts(pair, settings);
   m_stats.exactContacts += c.exact;
   m_stats.plausibleContacts += c.plausible;
   pair.written = true;
@@ -281,6 +377,7 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
       writePair(pair, settings);
       ++late;
     }
+    m_stats.neededNodePairs += pair.meshMesh().needed();
     confidenceSum += pair.confidence;
     m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
     if (pair.stop == StopReason::Completed) {

@@ -1,29 +1,37 @@
-// Internal: FrameScheduler, which collects the mesh-mesh pairs of a step while Bullet
-// dispatches and then spends the step's budget across them (policy: adb/bullet/frame_budget.h).
+// Internal: FrameScheduler, which collects the adb pairs of a step while Bullet dispatches
+// and then spends the step's budget across them (policy: adb/bullet/frame_budget.h).
 #pragma once
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <LinearMath/btTransform.h>
 
+#include <BulletCollision/BroadphaseCollision/btDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/core/query.h"
 
 namespace adb {
+class ManifoldAlgorithm;
 class MeshMeshAlgorithm;
 }
 
 namespace adb::detail {
 
-/// A mesh-mesh pair noted during the dispatch: enough to rebuild Bullet's wrappers and
-/// result afterwards (the dispatch's own live on its stack), and the pair's scheduling state.
+/// A pair noted during the dispatch: enough to rebuild Bullet's wrappers and result
+/// afterwards (the dispatch's own live on its stack; a compound's child wrappers only
+/// during its call), and the pair's scheduling state.
 struct DeferredPair {
-  MeshMeshAlgorithm* algorithm;
+  ManifoldAlgorithm* algorithm;
   const btCollisionObject* object0;
   const btCollisionObject* object1;
+  const btCollisionShape* shape0;  // the wrapper's shape: a compound's child for a child pair
+  const btCollisionShape* shape1;
   btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
   int partId0, index0, partId1, index1;
   // Scheduling state of this step.
@@ -36,6 +44,14 @@ struct DeferredPair {
   bool decided() const {
     return stop == StopReason::Completed || stop == StopReason::QualityReached;
   }
+  /// The mesh-mesh algorithm of a refinable pair.
+  MeshMeshAlgorithm& meshMesh() const;
+};
+
+/// Bullet's wrappers of a deferred pair, rebuilt as the dispatch made them.
+struct PairWrappers {
+  btCollisionObjectWrapper body0, body1;
+  explicit PairWrappers(const DeferredPair& pair);
 };
 
 class FrameScheduler {
@@ -43,19 +59,30 @@ class FrameScheduler {
   /// Starts a step: pairs noted from now on are scheduled by run().
   void begin();
   bool collecting() const { return m_collecting; }
-  void defer(const DeferredPair& pair) { m_pairs.push_back(pair); }
+  /// Notes a pair during the dispatch.
+  void defer(ManifoldAlgorithm* algorithm, const btCollisionObjectWrapper* body0,
+             const btCollisionObjectWrapper* body1);
   /// Spends the budget across the noted pairs, writes their manifolds, ends the step.
-  void run(const FrameSettings& settings);
+  void run(const FrameSettings& settings, const btDispatcherInfo& info);
   const FrameStats& stats() const { return m_stats; }
-  /// Notes a body with an unusable pose for this step: its report the first time this step
-  /// (for the dispatcher's callback), nullptr when already noted.
-  const BadPose* noteBadPose(const btCollisionObject* body, PoseDefect defect);
+  /// Notes a body with an unusable pose for this step and, the first time this step, tells
+  /// the callback.
+  void noteBadPose(const btCollisionObject* body, PoseDefect defect);
+  void setBadPoseCallback(std::function<void(const BadPose&)> callback) {
+    m_badPoseCallback = std::move(callback);
+  }
 
  private:
   using Clock = std::chrono::steady_clock;
 
   void firstPass(const FrameSettings& settings);
   void refine(const FrameSettings& settings);
+  /// Collides a pair that is not refined (mesh against a convex shape, a plane or another
+  /// concave shape) when its expected cost fits in `share` node pairs and the time left;
+  /// false (not run) otherwise.
+  bool runWhole(DeferredPair& pair, std::uint64_t share, double microsShare);
+  /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
+  void keepSkipped();
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
   std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
                       const FrameSettings& settings, bool resume);
@@ -66,7 +93,9 @@ class FrameScheduler {
   void updateMargin(const FrameSettings& settings);
   std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting) const;
 
-  std::vector<DeferredPair> m_pairs;  // reused: no allocation in steady state
+  std::vector<DeferredPair> m_pairs;   // mesh-mesh, refined (reused: no allocation)
+  std::vector<DeferredPair> m_wholes;  // the others: run whole or not at all
+  const btDispatcherInfo* m_info = nullptr;  // the dispatch's, during run()
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   FrameStats m_stats;
   Clock::time_point m_start;
@@ -75,14 +104,16 @@ class FrameScheduler {
   double m_microsPerNodePair = 0.25;
   double m_writeMicros = 5.0;       // writing a decided pair's contacts
   double m_lateWriteMicros = 20.0;  // writing a cut pair's, after the queries
+  double m_microsPerWholeUnit = 0.1;  // a whole pair's time per unit of work
   // Pairs of this step not queried yet, and queried but neither decided nor written.
   std::size_t m_unqueried = 0;
   std::size_t m_undecided = 0;
   double m_margin = 0.0;  // microseconds held back from a time budget (updateMargin)
   bool m_collecting = false;
+  std::uint64_t m_step = 0;  // steps begun
   // Bodies with unusable poses this step (reused: no allocation in steady state).
   std::vector<const btCollisionObject*> m_badBodies;
-  BadPose m_badPose;  // the last one noted
+  std::function<void(const BadPose&)> m_badPoseCallback;
   std::uint32_t m_badNamed = 0;
   BadPose m_badNamedPoses[FrameStats::kNamedBadPoses];
 };

@@ -1,13 +1,48 @@
-// ManifoldAlgorithm: the manifold shared by adb's Bullet algorithms.
-#include "adb/bullet/manifold_algorithm.h"
+// ManifoldAlgorithm: the manifold, the pose check and the hand-over to the scheduler.
+#include "manifold_algorithm.h"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 
 #include "adb/bullet/dispatcher.h"
 #include "conversions.h"
+#include "frame_scheduler.h"
 
 namespace adb {
+
+ManifoldAlgorithm::ManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                                     const btCollisionObjectWrapper* body0,
+                                     const btCollisionObjectWrapper* body1, bool swapped)
+    : btActivatingCollisionAlgorithm(ci, body0, body1), m_swapped(swapped) {
+  // Looked up once per pair, not per step.
+  if (auto* dispatcher = dynamic_cast<Dispatcher*>(ci.m_dispatcher1)) {
+    m_scheduler = &detail::schedulerOf(*dispatcher);
+  }
+}
+
+ManifoldAlgorithm::~ManifoldAlgorithm() {
+  if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
+}
+
+void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                         const btCollisionObjectWrapper* body1,
+                                         const btDispatcherInfo& info,
+                                         btManifoldResult* result) {
+  if (!acceptPoses(body0, body1)) return;
+  if (m_scheduler && m_scheduler->collecting()) {
+    m_scheduler->defer(this, body0, body1);
+    return;
+  }
+  m_lastWork = collideNow(body0, body1, info, result);
+}
+
+void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
+                                         const btCollisionObjectWrapper* body1) {
+  if (!m_manifold) return;
+  btManifoldResult result(body0, body1);
+  result.setPersistentManifold(m_manifold);
+  result.refreshContactPoints();
+}
 
 btPersistentManifold* ManifoldAlgorithm::manifoldFor(const btCollisionObjectWrapper* body0,
                                                      const btCollisionObjectWrapper* body1,
@@ -27,10 +62,7 @@ bool ManifoldAlgorithm::acceptPoses(const btCollisionObjectWrapper* body0,
     const PoseDefect defect = poseDefect(detail::toPose(body->getWorldTransform()));
     if (defect == PoseDefect::None) continue;
     usable = false;
-    // Rare: the lookup is paid only when something is wrong.
-    if (auto* dispatcher = dynamic_cast<Dispatcher*>(m_dispatcher)) {
-      dispatcher->reportBadPose(body->getCollisionObject(), defect);
-    }
+    if (m_scheduler) m_scheduler->noteBadPose(body->getCollisionObject(), defect);
   }
   if (!usable && m_manifold) m_manifold->clearManifold();
   return usable;

@@ -1,6 +1,6 @@
 // MeshConcaveAlgorithm: the other shape's triangles near the mesh, each against the mesh
 // triangles near it, decided by the exact triangle test.
-#include "adb/bullet/mesh_concave_algorithm.h"
+#include "mesh_concave_algorithm.h"
 
 #include <BulletCollision/BroadphaseCollision/btDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -34,8 +34,10 @@ struct TriangleVsMesh : public btTriangleCallback {
   Vec3 hint;  // from body 0 towards body 1
   btManifoldResult* result;
   int contacts = 0;
+  std::uint64_t visited = 0;  // their triangles and the mesh triangles near each
 
   void processTriangle(btVector3* corners, int, int) override {
+    ++visited;
     if (contacts >= kMaxContactPairs) return;
     Vec3 other[3];
     Aabb box;  // the other triangle's box in the mesh's coordinates
@@ -44,6 +46,7 @@ struct TriangleVsMesh : public btTriangleCallback {
       box.grow(worldToMesh * (other[k] - meshPose.translation));
     }
     forEachTriangleNear(*tree, box, [&](std::uint32_t t) {
+      ++visited;
       if (contacts >= kMaxContactPairs) return;
       Vec3 mine[3];
       worldTriangle(*tree, meshPose, t, mine);
@@ -61,10 +64,9 @@ struct TriangleVsMesh : public btTriangleCallback {
 
 }  // namespace
 
-void MeshConcaveAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
-                                            const btCollisionObjectWrapper* body1,
-                                            const btDispatcherInfo&, btManifoldResult* result) {
-  if (!acceptPoses(body0, body1)) return;
+std::uint64_t MeshConcaveAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
+                                              const btCollisionObjectWrapper* body1,
+                                              const btDispatcherInfo&, btManifoldResult* result) {
   manifoldFor(body0, body1, result);
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* otherWrap = m_swapped ? body0 : body1;
@@ -88,6 +90,7 @@ void MeshConcaveAlgorithm::processCollision(const btCollisionObjectWrapper* body
   mesh->getAabb(otherWrap->getWorldTransform().inverse() * meshWrap->getWorldTransform(), lo, hi);
   other->processAllTriangles(&cb, lo, hi);
   result->refreshContactPoints();
+  return cb.visited;
 }
 
 }  // namespace adb

@@ -1,6 +1,6 @@
 // MeshConvexAlgorithm: the triangles near a convex shape's oriented bounds, in closed form for
 // spheres, capsules and boxes, by Bullet's GJK/EPA otherwise.
-#include "adb/bullet/mesh_convex_algorithm.h"
+#include "mesh_convex_algorithm.h"
 
 #include <BulletCollision/BroadphaseCollision/btDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -113,10 +113,12 @@ void addCandidates(const PrimitiveContacts& found, const btTransform& meshPose,
 // runs it, each triangle's points gathered in a scratch manifold and then offered to the
 // selection: fed straight into the pair's manifold, a shallow point would replace a deeper
 // one nearby and the deepest could be lost.
-void generalConvexContacts(btDispatcher& dispatcher, const btCollisionObjectWrapper* meshWrap,
+std::uint64_t generalConvexContacts(btDispatcher& dispatcher, const btCollisionObjectWrapper* meshWrap,
                            const btCollisionObjectWrapper* convexWrap, const LocalConvex& local,
-                           double reach, bool meshIsBody0, const btDispatcherInfo& info,
-                           btManifoldResult& result, detail::ContactSelection& selection) {
+                                    double reach, bool meshIsBody0,
+                                    const btDispatcherInfo& info, btManifoldResult& result,
+                                    detail::ContactSelection& selection) {
+  std::uint64_t visited = 0;
   const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
   const AdbTree& tree = mesh->tree();
   const auto& vertices = tree.localVertices();
@@ -128,6 +130,7 @@ void generalConvexContacts(btDispatcher& dispatcher, const btCollisionObjectWrap
   btTriangleShape triangle(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
   triangle.setMargin(mesh->getMargin());
   forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+    ++visited;
     const Triangle& tri = tree.triangles()[t];
     if (!triangleNearBox(vertices[tri[0]], vertices[tri[1]], vertices[tri[2]], local.box,
                          reach)) {
@@ -165,15 +168,15 @@ void generalConvexContacts(btDispatcher& dispatcher, const btCollisionObjectWrap
   }
   result.setPersistentManifold(pairManifold);
   dispatcher.releaseManifold(scratch);
+  return visited;
 }
 
 }  // namespace
 
-void MeshConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
-                                           const btCollisionObjectWrapper* body1,
-                                           const btDispatcherInfo& info,
-                                           btManifoldResult* result) {
-  if (!acceptPoses(body0, body1)) return;
+std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
+                                             const btCollisionObjectWrapper* body1,
+                                             const btDispatcherInfo& info,
+                                             btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(body0, body1, result);
   const bool meshIsBody0 = !m_swapped;
   const btCollisionObjectWrapper* meshWrap = meshIsBody0 ? body0 : body1;
@@ -188,20 +191,22 @@ void MeshConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0
   const double meshMargin = mesh->getMargin();
   const double reach = threshold + meshMargin;
   const Pose convexInMesh = toPose(meshPose.inverseTimes(convexWrap->getWorldTransform()));
-  if (!convexInMesh.rotation.allFinite() || !convexInMesh.translation.allFinite()) return;
+  if (!convexInMesh.rotation.allFinite() || !convexInMesh.translation.allFinite()) return 0;
   const LocalConvex local = localConvex(*convex, convexInMesh, tree.origin(), reach);
   const auto& vertices = tree.localVertices();
 
   detail::ContactSelection selection;
   if (local.kind == LocalConvex::General) {
-    generalConvexContacts(*m_dispatcher, meshWrap, convexWrap, local, reach, meshIsBody0, info,
-                          *result, selection);
+    const std::uint64_t work = generalConvexContacts(*m_dispatcher, meshWrap, convexWrap, local,
+                                                     reach, meshIsBody0, info, *result, selection);
     selection.write(*result, meshIsBody0);
     result->refreshContactPoints();
-    return;
+    return work;
   }
 
+  std::uint64_t visited = 0;
   forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+    ++visited;
     const Triangle& tri = tree.triangles()[t];
     const Vec3& a = vertices[tri[0]];
     const Vec3& b = vertices[tri[1]];
@@ -223,6 +228,7 @@ void MeshConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0
   });
   selection.write(*result, meshIsBody0);
   result->refreshContactPoints();
+  return visited;
 }
 
 }  // namespace adb

@@ -1,5 +1,5 @@
 // MeshPlaneAlgorithm: mesh vertices against a static plane, pruned by the tree's boxes.
-#include "adb/bullet/mesh_plane_algorithm.h"
+#include "mesh_plane_algorithm.h"
 
 #include <BulletCollision/BroadphaseCollision/btDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
@@ -13,10 +13,9 @@
 
 namespace adb {
 
-void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
-                                          const btCollisionObjectWrapper* body1,
-                                          const btDispatcherInfo&, btManifoldResult* result) {
-  if (!acceptPoses(body0, body1)) return;
+std::uint64_t MeshPlaneAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
+                                            const btCollisionObjectWrapper* body1,
+                                            const btDispatcherInfo&, btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(body0, body1, result);
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* planeWrap = m_swapped ? body0 : body1;
@@ -41,7 +40,9 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   std::uint32_t stack[64];  // at most one pending sibling per level of a <= 29-level tree
   int top = 0;
   stack[top++] = 0;
+  std::uint64_t visited = 0;  // nodes and triangles
   while (top > 0) {
+    ++visited;
     const Node& node = tree.nodes()[stack[--top]];
     const Vec3 centre = 0.5 * (node.boxLo() + node.boxHi());
     const Vec3 half = 0.5 * (node.boxHi() - node.boxLo());
@@ -53,6 +54,7 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     }
     for (std::uint32_t t = node.firstTriangle(); t < node.firstTriangle() + node.triangleCount();
          ++t) {
+      ++visited;
       for (std::uint32_t v : tree.triangles()[t]) {
         const Vec3& x = tree.localVertices()[v];
         const double distance = n.dot(x) + c;
@@ -70,6 +72,7 @@ void MeshPlaneAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   }
   selection.write(*result, !m_swapped);
   result->refreshContactPoints();
+  return visited;
 }
 
 }  // namespace adb

@@ -1,13 +1,13 @@
-// adb::Dispatcher: a btCollisionDispatcher that registers adb's algorithms and spends a
-// per-step budget across all mesh-mesh pairs of the step (adb/bullet/frame_budget.h).
+// adb::Dispatcher: a btCollisionDispatcher that registers adb's algorithms and spends one
+// per-step budget across every pair that involves an adb mesh (adb/bullet/frame_budget.h).
 //
 // Bullet dispatches pairs one after another, so a budget spent inside each algorithm would
-// go first come, first served. Here the mesh-mesh algorithms only note their pair while
-// Bullet dispatches; when the dispatch is over, the scheduler spends the step's budget where
-// the uncertainty is largest and writes every pair's manifold, before the solver runs.
-// Other pairs (mesh-plane, mesh-convex, ...) are processed by Bullet's dispatch as usual.
-// contactTest/contactPairTest, and mesh pairs inside compounds, are answered immediately and
-// exactly, outside the budget.
+// go first come, first served. Here adb's algorithms only note their pair while Bullet
+// dispatches: mesh-mesh, mesh against a convex shape, a plane or another concave shape, and
+// meshes inside compounds. When the dispatch is over, the scheduler spends the step's budget
+// (pairs with a static body first, then where the uncertainty is largest) and writes every
+// pair's manifold, before the solver runs. contactTest/contactPairTest are answered at once
+// and exactly, outside the budget.
 #pragma once
 
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
@@ -17,14 +17,18 @@
 #include <memory>
 
 #include "adb/bullet/frame_budget.h"
-#include "adb/bullet/mesh_mesh_algorithm.h"  // collisionConstructionInfo(), registration
 #include "adb/bullet/precision.h"
+#include "adb/bullet/registration.h"
 
 namespace adb {
 
+class Dispatcher;
+
 namespace detail {
 class FrameScheduler;
-}
+/// Internal: the scheduler adb's algorithms hand their pairs to.
+FrameScheduler& schedulerOf(Dispatcher& dispatcher);
+}  // namespace detail
 
 class Dispatcher : public btCollisionDispatcher {
  public:
@@ -37,7 +41,7 @@ class Dispatcher : public btCollisionDispatcher {
   /// pAccept outside [0, 1], kMin < 0, maxPlausibleContacts < 0, softCfm < 0 or NaN).
   void setFrameSettings(const FrameSettings& settings);
   const FrameSettings& frameSettings() const { return m_settings; }
-  /// Statistics of the last step's mesh-mesh pairs.
+  /// Statistics of the last step's adb pairs.
   const FrameStats& lastFrameStats() const;
 
   /// Called once per step for each body whose pose adb cannot use (NaN, a rotation that is
@@ -46,19 +50,15 @@ class Dispatcher : public btCollisionDispatcher {
   /// to the bodies it touches; lastFrameStats() names the body too. The callback must not
   /// throw: an exception from it is swallowed (none may leave Bullet's step).
   void setBadPoseCallback(std::function<void(const BadPose&)> callback);
-  /// Internal: an adb algorithm met `body` with an unusable pose.
-  void reportBadPose(const btCollisionObject* body, PoseDefect defect);
 
   void dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
                                  const btDispatcherInfo& info, btDispatcher* dispatcher) override;
 
-  /// Internal: the scheduler mesh-mesh algorithms hand their pair to during a dispatch.
-  detail::FrameScheduler& scheduler() { return *m_scheduler; }
-
  private:
+  friend detail::FrameScheduler& detail::schedulerOf(Dispatcher& dispatcher);
+
   FrameSettings m_settings;
   std::unique_ptr<detail::FrameScheduler> m_scheduler;
-  std::function<void(const BadPose&)> m_badPoseCallback;
 };
 
 }  // namespace adb

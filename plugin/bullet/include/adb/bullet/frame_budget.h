@@ -1,15 +1,21 @@
-// FrameSettings and FrameStats: the per-step budget adb::Dispatcher spends on mesh-mesh pairs,
-// the quality knobs of the pair queries and contacts, and what a step actually did.
+// FrameSettings and FrameStats: the per-step budget adb::Dispatcher spends on every pair
+// that involves an adb mesh, the quality knobs of the pair queries and contacts, and what a
+// step actually did.
 //
 // Policy (docs/bullet-budget.md has the measurements): pairs with a static body first, then
-// the rest, each pair is given what it needed last step, at most an even share of what is
-// left; then, while budget is left, the pair whose contacts are least certain gets as much
-// again, resumed where it stopped. A pair is certain when its traversal completed (exact
-// contacts, sampled per contact region) or reached the quality target (kMin node pairs above
-// pMin, which needs the paper's best-first traversal; otherwise pairs run depth first). Pairs
-// the budget cut get plausible contacts from their unresolved node pairs with probability >=
-// pAccept. A time budget holds back the contact writing still to come and a margin that
-// follows the overshoot's peaks. With a node-pair budget, a step is reproducible bit for bit.
+// the rest. Pairs that are not mesh-mesh (a mesh against a convex shape, a plane or another
+// concave shape) run whole or not at all: those with a static body may take all that is
+// left, the others an even share; one that does not fit keeps its last contacts (refreshed
+// for the new poses) and goes first next step. Each mesh-mesh pair is given what it needed
+// last step, at most an even share of what is left; then, while budget is left, the pair
+// whose contacts are least certain gets as much again, resumed where it stopped. A pair is
+// certain when its traversal completed (exact contacts, sampled per contact region) or
+// reached the quality target (kMin node pairs above pMin, which needs the paper's
+// best-first traversal; otherwise pairs run depth first). Pairs the budget cut get plausible
+// contacts from their unresolved node pairs with probability >= pAccept. A time budget holds
+// back the contact writing still to come and a margin that follows the overshoot's peaks.
+// With a node-pair budget, a step is reproducible bit for bit. Meshes inside
+// btCompoundShapes are scheduled like any other.
 #pragma once
 
 #include <cstdint>
@@ -22,10 +28,12 @@ class btCollisionObject;
 namespace adb {
 
 struct FrameSettings {
-  /// Wall-clock budget per step for all mesh-mesh pairs, in microseconds; infinity for none.
-  /// 0 is valid: every pair gets its roots tested and no mesh-mesh contact.
+  /// Wall-clock budget per step for all adb pairs, in microseconds; infinity for none.
+  /// 0 is valid: every mesh-mesh pair gets its roots tested and no contact, the other pairs
+  /// do not run and keep what contacts they had.
   double budgetMicros = std::numeric_limits<double>::infinity();
-  /// Node pairs per step for all mesh-mesh pairs: the reproducible budget. Every pair's
+  /// Node pairs per step for all adb pairs (the other pairs count the tree nodes and
+  /// triangles they visit): the reproducible budget. Every mesh-mesh pair's
   /// roots are always tested, so a step evaluates at most max(budget, pairs) node pairs.
   std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
   /// A node pair with probability above pMin counts towards kMin (the paper's collision pair).
@@ -55,7 +63,7 @@ struct BadPose {
   PoseDefect defect = PoseDefect::None;
 };
 
-/// What the last step did with the mesh-mesh pairs it met.
+/// What the last step did with the adb pairs it met.
 struct FrameStats {
   /// Bodies with a pose adb could not use this step (all counted, the first few named).
   static constexpr int kNamedBadPoses = 4;
@@ -63,11 +71,22 @@ struct FrameStats {
   BadPose badPoses[kNamedBadPoses];
 
   std::uint32_t pairs = 0;          ///< mesh-mesh pairs whose boxes overlapped
+  /// adb pairs that are not mesh-mesh (a mesh against a convex shape, a plane or another
+  /// concave shape; compound children included): each runs whole or not at all.
+  std::uint32_t otherPairs = 0;
+  /// Of those, the ones the budget skipped: they keep their last contacts, refreshed for
+  /// the new poses.
+  std::uint32_t otherKeptPairs = 0;
+  /// Node pairs (and, for the other pairs, nodes and triangles visited) the step would
+  /// need for exact contacts everywhere, from each pair's last complete run: the scale
+  /// against which to set a node-pair budget.
+  std::uint64_t neededNodePairs = 0;
   std::uint32_t exactPairs = 0;     ///< decided exactly: traversal completed
   std::uint32_t qualityPairs = 0;   ///< stopped at the quality target (k_min above p_min)
   std::uint32_t cutPairs = 0;       ///< cut by the budget: plausible contacts where p >= pAccept
   std::uint32_t queries = 0;        ///< pair queries run (a pair re-run counts again)
-  std::uint64_t nodePairs = 0;      ///< node pairs evaluated, all queries of the step
+  std::uint64_t nodePairs = 0;      ///< node pairs evaluated, all queries of the step (the
+                                    ///< other pairs' nodes and triangles included)
   std::uint32_t exactContacts = 0;  ///< contact points from intersecting triangle pairs
   std::uint32_t plausibleContacts = 0;  ///< contact points from unresolved node pairs
   double micros = 0.0;              ///< wall clock of the step's pair work, contacts included

@@ -1,4 +1,4 @@
-// MeshConvexAlgorithm: a MeshShape against a convex shape. The tree is culled with the convex
+// Internal: MeshConvexAlgorithm, a MeshShape against a convex shape. The tree is culled with the convex
 // shape's own oriented bounds taken into the mesh frame (its axis-aligned box there would
 // cover the whole mesh for a tilted wall); spheres, capsules and boxes are then tested
 // against each triangle in closed form (adb/core/primitive_contact.h), and every other
@@ -6,7 +6,7 @@
 // points are reduced to the deepest and the widest support before they reach the manifold.
 #pragma once
 
-#include "adb/bullet/manifold_algorithm.h"
+#include "manifold_algorithm.h"
 
 namespace adb {
 
@@ -14,9 +14,9 @@ class MeshConvexAlgorithm : public ManifoldAlgorithm {
  public:
   using ManifoldAlgorithm::ManifoldAlgorithm;
 
-  void processCollision(const btCollisionObjectWrapper* body0,
-                        const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
-                        btManifoldResult* result) override;
+  std::uint64_t collideNow(const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                           btManifoldResult* result) override;
 };
 
 }  // namespace adb

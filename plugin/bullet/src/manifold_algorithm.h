@@ -1,0 +1,111 @@
+// Internal: ManifoldAlgorithm, what adb's Bullet collision algorithms share, and
+// CreateAlgorithm, the factory Bullet's dispatcher calls.
+//
+// Shared: which body is the mesh, one persistent manifold made on first use and released
+// with the algorithm, no continuous collision detection, the pose check, and the hand-over
+// to the step's scheduler. Under adb::Dispatcher every pair (a compound's children included)
+// is only noted while Bullet dispatches; the scheduler then runs them all within the step's
+// one budget (frame_scheduler.h). Elsewhere (a plain btCollisionDispatcher, contactTest) a
+// pair is collided at once.
+#pragma once
+
+#include <BulletCollision/BroadphaseCollision/btDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
+
+#include <cstdint>
+#include <new>
+
+#include "adb/bullet/precision.h"
+
+class btManifoldResult;
+
+namespace adb {
+
+namespace detail {
+class FrameScheduler;
+}
+
+class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  /// `swapped`: body0 is the other shape and body1 the mesh.
+  ManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo& ci,
+                    const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                    bool swapped);
+  ~ManifoldAlgorithm() override;
+
+  /// Bullet's entry: checks both poses, then hands the pair to the step's scheduler during
+  /// adb::Dispatcher's dispatch, or collides it at once.
+  void processCollision(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                        btManifoldResult* result) final;
+
+  /// Collides the pair now and writes its contacts into `result` (its manifold set first).
+  /// Returns the work done, in node-pair units (tree nodes and triangles visited).
+  virtual std::uint64_t collideNow(const btCollisionObjectWrapper* body0,
+                                   const btCollisionObjectWrapper* body1,
+                                   const btDispatcherInfo& info, btManifoldResult* result) = 0;
+  /// Whether the scheduler refines this pair under the budget (a mesh-mesh pair's
+  /// traversal); the others are collided whole or not at all in a step.
+  virtual bool refinable() const { return false; }
+  /// collideNow, for the scheduler: remembers the work as the next step's estimate.
+  /// `step` is the scheduler's step count: the pair ran then.
+  std::uint64_t collideScheduled(const btCollisionObjectWrapper* body0,
+                                 const btCollisionObjectWrapper* body1,
+                                 const btDispatcherInfo& info, btManifoldResult* result,
+                                 std::uint64_t step) {
+    m_lastWork = collideNow(body0, body1, info, result);
+    m_lastRun = step;
+    return m_lastWork;
+  }
+  /// Work units of the last collideNow: the next step's estimate of this pair's cost.
+  std::uint64_t lastWork() const { return m_lastWork; }
+  /// The scheduler's step at which collideScheduled last ran (0: never).
+  std::uint64_t lastRun() const { return m_lastRun; }
+  /// Refreshes the pair's manifold for the bodies' new poses (Bullet's refreshContactPoints)
+  /// without colliding: what a pair the budget skipped keeps from its last step.
+  void keepLastContacts(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1);
+
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return 1;  // no continuous collision detection against meshes
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override {
+    if (m_manifold) manifolds.push_back(m_manifold);
+  }
+
+ protected:
+  /// The pair's manifold (made on first use), set as `result`'s.
+  btPersistentManifold* manifoldFor(const btCollisionObjectWrapper* body0,
+                                    const btCollisionObjectWrapper* body1,
+                                    btManifoldResult* result);
+  detail::FrameScheduler* scheduler() const { return m_scheduler; }
+
+  bool m_swapped;
+
+ private:
+  /// Whether both bodies' poses are usable (adb/core/query.h, poseDefect). When one is not,
+  /// the pair's manifold is emptied (its points would carry the bad pose into the solver)
+  /// and the body is reported to the scheduler: the pair is skipped.
+  bool acceptPoses(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
+
+  btPersistentManifold* m_manifold = nullptr;
+  detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
+  std::uint64_t m_lastWork = 0;
+  std::uint64_t m_lastRun = 0;
+};
+
+/// The dispatcher's factory for an algorithm constructed as Algo(ci, body0, body1, swapped);
+/// set m_swapped for the mesh-second order. Algorithms live in the dispatcher's pool.
+template <class Algo>
+struct CreateAlgorithm : public btCollisionAlgorithmCreateFunc {
+  btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                 const btCollisionObjectWrapper* body0,
+                                                 const btCollisionObjectWrapper* body1) override {
+    void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(Algo));
+    return new (memory) Algo(ci, body0, body1, m_swapped);
+  }
+};
+
+}  // namespace adb

@@ -1,0 +1,68 @@
+// Internal: MeshMeshAlgorithm, Bullet's collision algorithm for a pair of MeshShapes.
+//
+// Under adb::Dispatcher the pair is handed to the step's scheduler, which queries it within
+// the step's budget (adb/bullet/frame_budget.h), refining it while budget is left, and then
+// has it write its contacts: exact ones from intersecting triangle pairs, plausible ones
+// from node pairs the budget left unresolved. Elsewhere (a plain btCollisionDispatcher,
+// contactTest/contactPairTest) the pair is answered at once in exact mode.
+#pragma once
+
+#include <LinearMath/btTransform.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "adb/bullet/frame_budget.h"
+#include "manifold_algorithm.h"
+#include "adb/core/query.h"
+
+namespace adb {
+
+namespace detail {
+struct DeferredPair;
+}  // namespace detail
+
+/// Contact points one pair wrote in a step.
+struct ContactCount {
+  std::uint32_t exact = 0;
+  std::uint32_t plausible = 0;
+};
+
+class MeshMeshAlgorithm : public ManifoldAlgorithm {
+ public:
+  using ManifoldAlgorithm::ManifoldAlgorithm;
+
+  /// At once, exact (a plain dispatcher, contactTest).
+  std::uint64_t collideNow(const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                           btManifoldResult* result) override;
+  bool refinable() const override { return true; }
+
+  // --- used by the scheduler -------------------------------------------------------------
+  /// Starts the deferred pair's query with `settings` (or, with `resume`, continues the one
+  /// a budget cut) and runs it within `budget`; the evidence stays in this pair's traversal.
+  const QueryResult& query(const detail::DeferredPair& pair, const QuerySettings& settings,
+                           const StepBudget& budget, bool resume);
+  /// The work of the last call to query().
+  const StepWork& lastStep() const { return m_traversal.lastStep(); }
+  /// Writes the contacts of the last query into the pair's manifold.
+  ContactCount writeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
+  /// Node pairs the last query that finished needed: the next step's first grant.
+  std::uint64_t needed() const { return m_needed; }
+  /// The node pairs the last query left unresolved (empty when it completed).
+  const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
+
+ private:
+  // Resets the traversal for a new query; false (and an empty traversal) for a bad pose.
+  bool start(const AdbTree& tree0, const btTransform& transform0, const AdbTree& tree1,
+             const btTransform& transform1, const QuerySettings& settings);
+  ContactCount addContacts(const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, btManifoldResult& result,
+                           const FrameSettings& settings);
+
+  Traversal m_traversal;  // grows to this pair's largest query, then stays
+  StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
+  std::uint64_t m_needed = 0;
+};
+
+}  // namespace adb

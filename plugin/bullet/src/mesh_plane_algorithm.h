@@ -1,0 +1,18 @@
+// Internal: MeshPlaneAlgorithm, a MeshShape against a btStaticPlaneShape (a ground plane): the vertices
+// of the mesh below or near the plane, found through the tree, become contacts.
+#pragma once
+
+#include "manifold_algorithm.h"
+
+namespace adb {
+
+class MeshPlaneAlgorithm : public ManifoldAlgorithm {
+ public:
+  using ManifoldAlgorithm::ManifoldAlgorithm;
+
+  std::uint64_t collideNow(const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
+                           btManifoldResult* result) override;
+};
+
+}  // namespace adb

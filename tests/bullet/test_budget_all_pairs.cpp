@@ -1,0 +1,118 @@
+// One budget for every pair that involves an adb mesh: mesh-mesh, mesh against boxes,
+// spheres and capsules, a static plane, and meshes inside btCompoundShapes all run within
+// the step's node-pair budget; pairs the budget skips keep their last contacts; nothing
+// falls through the floor and no NaN appears.
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "adb/core/mesh_generators.h"
+#include "bullet_world.h"
+
+namespace adb {
+namespace {
+
+using test::World;
+
+// A mixed pile: a plane floor, a static box ledge, tori (some as compound children, offset
+// from the body's frame), and spheres, boxes and capsules dropped among them.
+void addMixedPile(World& w) {
+  auto plane = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0);
+  w.add(std::move(plane), 0, btVector3(0, 0, 0));
+  w.add(std::make_unique<btBoxShape>(btVector3(1.5f, 0.2f, 1.5f)), 0, btVector3(2.5f, 0.2f, 0));
+  const auto torus = MeshData::build(gen::makeTorus(0.5, 0.2, 24, 12));
+  for (int i = 0; i < 12; ++i) {
+    const btVector3 at(btScalar(-2 + (i % 4) * 1.4), btScalar(0.6 + (i / 4) * 0.7),
+                       btScalar((i % 2) * 0.3));
+    if (i % 3 == 0) {
+      auto compound = std::make_unique<btCompoundShape>();
+      auto child = std::make_unique<MeshShape>(torus);
+      btTransform offset(btQuaternion(btVector3(1, 0, 0), btScalar(0.4)), btVector3(0.1f, 0, 0));
+      compound->addChildShape(offset, child.get());
+      w.shapes.push_back(std::move(child));
+      w.add(std::move(compound), 1, at);
+    } else {
+      w.add(torus, 1, at);
+    }
+  }
+  for (int i = 0; i < 9; ++i) {
+    const btVector3 at(btScalar(-1.5 + (i % 3) * 1.4), btScalar(3.0 + (i / 3) * 0.5), 0.2f);
+    if (i % 3 == 0) {
+      w.add(std::make_unique<btSphereShape>(btScalar(0.2)), 1, at);
+    } else if (i % 3 == 1) {
+      w.add(std::make_unique<btBoxShape>(btVector3(0.2f, 0.15f, 0.25f)), 1, at);
+    } else {
+      w.add(std::make_unique<btCapsuleShape>(btScalar(0.12), btScalar(0.3)), 1, at);
+    }
+  }
+}
+
+struct PileRun {
+  std::vector<FrameStats> steps;
+  double lowest = std::numeric_limits<double>::infinity();  // lowest body centre
+  bool finite = true;
+};
+
+PileRun simulate(const FrameSettings& settings, int steps) {
+  World w(test::Dispatch::Adb, settings);
+  addMixedPile(w);
+  PileRun run;
+  for (int i = 0; i < steps; ++i) {
+    w.step();
+    run.steps.push_back(w.adbDispatcher->lastFrameStats());
+    for (const auto& b : w.bodies) {
+      const btVector3& o = b->getWorldTransform().getOrigin();
+      run.finite = run.finite && std::isfinite(o.length2());
+      if (b->getInvMass() > 0) run.lowest = std::min(run.lowest, double(o.y()));
+    }
+  }
+  return run;
+}
+
+TEST(BudgetAllPairs, EveryPairKindIsScheduledAndCompoundChildrenCount) {
+  const PileRun exact = simulate(FrameSettings{}, 240);
+  std::uint32_t meshMesh = 0, others = 0;
+  for (const FrameStats& s : exact.steps) {
+    meshMesh += s.pairs;
+    others += s.otherPairs;
+    EXPECT_EQ(s.otherKeptPairs, 0u);  // no budget: every pair runs
+    EXPECT_GE(s.neededNodePairs, s.nodePairs / 2);
+  }
+  EXPECT_GT(meshMesh, 0u);
+  EXPECT_GT(others, 0u);
+  EXPECT_TRUE(exact.finite);
+  EXPECT_GT(exact.lowest, 0.0);  // nothing through the plane
+}
+
+TEST(BudgetAllPairs, ANodePairBudgetHoldsAtP99WhateverThePairKinds) {
+  // The budget: a quarter of what exact contacts need once the pile has formed.
+  const PileRun exact = simulate(FrameSettings{}, 240);
+  std::uint64_t need = 0;
+  for (std::size_t i = 120; i < exact.steps.size(); ++i) {
+    need = std::max(need, exact.steps[i].neededNodePairs);
+  }
+  ASSERT_GT(need, 400u);
+  FrameSettings tight;
+  tight.budgetNodePairs = need / 4;
+  const PileRun cut = simulate(tight, 240);
+  std::vector<double> ratio;
+  std::uint32_t kept = 0;
+  for (const FrameStats& s : cut.steps) {
+    // Every mesh-mesh pair's roots are tested whatever the budget (one node pair each).
+    ratio.push_back(double(s.nodePairs) / double(tight.budgetNodePairs + s.pairs));
+    kept += s.otherKeptPairs;
+  }
+  std::sort(ratio.begin(), ratio.end());
+  EXPECT_LE(ratio[ratio.size() * 99 / 100], 1.05) << "budget " << tight.budgetNodePairs;
+  EXPECT_GT(kept, 0u) << "a quarter of the need must skip some whole pairs";
+  EXPECT_TRUE(cut.finite);
+  EXPECT_GT(cut.lowest, 0.0);  // skipped pairs keep their contacts: nothing falls through
+}
+
+}  // namespace
+}  // namespace adb
