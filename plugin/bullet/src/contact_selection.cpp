@@ -23,33 +23,71 @@ void ContactSelection::add(const CandidateContact& c) {
   std::push_heap(m_candidates, m_candidates + m_count, shallower);
 }
 
-int ContactSelection::write(btManifoldResult& result, bool meshIsBody0) {
+namespace {
+
+// The support: points within this fraction of the breaking threshold of the deepest one.
+// A resting face touches at depths that differ by rounding and the solver's slop; a vertex
+// hovering 0.01 above a plane (inside the 0.02 breaking distance) is not part of it.
+constexpr btScalar kSupportBand = btScalar(0.25);
+
+}  // namespace
+
+int ContactSelection::write(btManifoldResult& result, bool meshIsBody0,
+                            const btPersistentManifold& previous) {
   if (m_count == 0) return 0;
-  // Greedy farthest-point selection, seeded with the deepest: each next point maximises its
-  // distance to the nearest one already chosen (the chosen ones swap to the front).
   int deepest = 0;
   for (int i = 1; i < m_count; ++i) {
     if (m_candidates[i].distance < m_candidates[deepest].distance) deepest = i;
   }
   std::swap(m_candidates[0], m_candidates[deepest]);
-  btScalar nearest[kCapacity];
+  // The support band, moved to the front: [0, support).
+  const btScalar threshold = previous.getContactBreakingThreshold();
+  const btScalar limit = m_candidates[0].distance + kSupportBand * threshold;
+  int support = 1;
   for (int i = 1; i < m_count; ++i) {
+    if (m_candidates[i].distance <= limit) std::swap(m_candidates[support++], m_candidates[i]);
+  }
+  // Bullet merges a new point into a cached one closer than the breaking threshold: a point
+  // written that close to one already written would replace it (the deepest, say). Every
+  // point written is farther than that from the others.
+  const btScalar apart = threshold * threshold;
+  btScalar nearest[kCapacity];  // squared distance to the nearest chosen point
+  for (int i = 1; i < support; ++i) {
     nearest[i] = (m_candidates[i].pointOnB - m_candidates[0].pointOnB).length2();
   }
   int chosen = 1;
-  while (chosen < kWritten && chosen < m_count) {
-    int best = chosen;
-    for (int i = chosen + 1; i < m_count; ++i) {
-      if (nearest[i] > nearest[best]) best = i;
-    }
-    if (!(nearest[best] > 0)) break;  // the rest coincide with chosen points
+  const auto choose = [&](int best) {
     std::swap(m_candidates[chosen], m_candidates[best]);
     std::swap(nearest[chosen], nearest[best]);
-    for (int i = chosen + 1; i < m_count; ++i) {
+    for (int i = chosen + 1; i < support; ++i) {
       nearest[i] = btMin(nearest[i],
                          (m_candidates[i].pointOnB - m_candidates[chosen].pointOnB).length2());
     }
     ++chosen;
+  };
+  // Persistence: the candidate nearest each of last step's points, so Bullet matches it.
+  for (int k = 0; k < previous.getNumContacts() && chosen < kWritten; ++k) {
+    const btVector3& old = previous.getContactPoint(k).m_positionWorldOnB;
+    int best = -1;
+    btScalar bestDistance = apart;
+    for (int i = chosen; i < support; ++i) {
+      const btScalar d = (m_candidates[i].pointOnB - old).length2();
+      if (d < bestDistance && nearest[i] > apart) {
+        bestDistance = d;
+        best = i;
+      }
+    }
+    if (best >= 0) choose(best);
+  }
+  // Greedy farthest-point selection over the rest of the support: each next point maximises
+  // its distance to the nearest one already chosen.
+  while (chosen < kWritten && chosen < support) {
+    int best = chosen;
+    for (int i = chosen + 1; i < support; ++i) {
+      if (nearest[i] > nearest[best]) best = i;
+    }
+    if (!(nearest[best] > apart)) break;  // the rest would merge with chosen points
+    choose(best);
   }
   for (int i = 0; i < chosen; ++i) {
     const CandidateContact& c = m_candidates[i];

@@ -3,12 +3,16 @@
 // A mesh lying on a floor offers hundreds of candidate points (every vertex near a plane,
 // every triangle near a box). Bullet's manifold keeps 4, and fed one point at a time it
 // keeps whichever arrived in a good order: fed in tree order, it could hold 4 shallow points
-// while the deepest went unseen, and bodies sank. Here the deepest point is always kept,
-// then the points that span the widest support (as Bullet's own reduction prefers), and
-// only those reach the manifold. Fixed capacity: no allocation per step.
+// while the deepest went unseen, and bodies sank. Here the deepest point is always kept;
+// then, among the points about as deep as it (the support: a vertex hovering within the
+// breaking distance is not touching), those nearest the manifold's points from the last step
+// (so that Bullet matches them and warm-starts their impulses: new points every step leave a
+// resting body jittering), then the ones that span the widest support. Only those reach the
+// manifold. Fixed capacity: no allocation per step.
 #pragma once
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
 #include <cstdint>
 
@@ -28,16 +32,19 @@ class ContactSelection {
  public:
   /// Candidates kept at most: past this, a deeper candidate replaces the shallowest.
   static constexpr int kCapacity = 256;
-  /// Points written to the manifold per step at most: its 4, and one spare so that a point
-  /// Bullet merges with a cached one does not cost the support its corner.
-  static constexpr int kWritten = 5;
+  /// Points written to the manifold per step at most: the 4 it holds (a fifth would make it
+  /// drop one of the others every step).
+  static constexpr int kWritten = 4;
 
   void add(const CandidateContact& c);
   int size() const { return m_count; }
-  /// Writes the deepest candidate and then, greedily, the ones farthest from those already
-  /// written (the widest support). `meshIsBody0` picks which shape identifier the triangle
-  /// index goes to. Returns the number of points written.
-  int write(btManifoldResult& result, bool meshIsBody0);
+  /// Writes the deepest candidate; then, among those within a quarter of the breaking
+  /// threshold of its depth, the ones nearest the points `previous` (the pair's manifold,
+  /// before this step's points) holds, within the breaking threshold; then greedily the ones
+  /// farthest from those already written (the widest support).
+  /// `meshIsBody0` picks which shape identifier the triangle index goes to. Returns the
+  /// number of points written.
+  int write(btManifoldResult& result, bool meshIsBody0, const btPersistentManifold& previous);
 
  private:
   CandidateContact m_candidates[kCapacity];

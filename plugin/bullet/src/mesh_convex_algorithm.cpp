@@ -199,7 +199,7 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
   if (local.kind == LocalConvex::General) {
     const std::uint64_t work = generalConvexContacts(*m_dispatcher, meshWrap, convexWrap, local,
                                                      reach, meshIsBody0, info, *result, selection);
-    selection.write(*result, meshIsBody0);
+    selection.write(*result, meshIsBody0, *manifold);
     result->refreshContactPoints();
     return work;
   }
@@ -226,7 +226,7 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
     addCandidates(found, meshPose, tree.origin(), meshMargin, threshold, meshIsBody0,
                   static_cast<int>(tree.meshTriangle(t)), selection);
   });
-  selection.write(*result, meshIsBody0);
+  selection.write(*result, meshIsBody0, *manifold);
   result->refreshContactPoints();
   return visited;
 }

@@ -70,7 +70,7 @@ std::uint64_t MeshPlaneAlgorithm::collideNow(const btCollisionObjectWrapper* bod
       }
     }
   }
-  selection.write(*result, !m_swapped);
+  selection.write(*result, !m_swapped, *manifold);
   result->refreshContactPoints();
   return visited;
 }
