@@ -1,9 +1,11 @@
-// adb-demo: runs the pile scene headless (generated tori, gears and torus knots dropped into a
-// bin) with adb's MeshShape or with Bullet's GImpact on the same meshes, prints a line every N
-// steps and a final table, and writes the per-step figures as CSV with --out.
+// adb-demo: runs the pile scene headless (generated tori, gears and torus knots, or copies of
+// mesh files, dropped into a bin) with adb's MeshShape or with Bullet's GImpact on the same
+// meshes, prints a line every N steps and a final table, and writes the per-step figures as
+// CSV with --out.
 //
 //   build/bin/adb-demo [--backend adb|gimpact] [--bodies N] [--triangles N] [--steps N]
-//                      [--every N] [--seed S] [--out DIR]
+//                      [--every N] [--seed S] [--out DIR] [--floor mesh|box|plane]
+//                      [--mesh FILE]...
 //                      [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K]
 //                      [--p-accept P] [--no-soften]
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "adb/io/mesh_file.h"
 #include "scene/pile_scene.h"
 
 namespace {
@@ -31,8 +34,16 @@ struct Options {
   std::fprintf(code ? stderr : stdout,
                "usage: adb-demo [--backend adb|gimpact] [--bodies N] [--triangles N] "
                "[--steps N] [--every N] [--seed S] [--out DIR]\n"
+               "                [--floor mesh|box|plane] [--mesh FILE]...\n"
                "                [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K] "
                "[--p-accept P] [--no-soften]\n"
+               "  --floor         the bin: box meshes (default), btBoxShape floor and walls, or a "
+               "btStaticPlaneShape\n"
+               "                  floor between btBoxShape walls; the same for both backends\n"
+               "  --mesh          bodies are copies of this mesh file (any format assimp reads), "
+               "scaled to 0.8\n"
+               "                  across; repeat to cycle through several (default: generated "
+               "tori, gears, knots)\n"
                "  --budget-us     wall-clock budget per step for all mesh-mesh pairs (default "
                "none)\n"
                "  --budget-pairs  node pairs per step for all mesh-mesh pairs: reproducible\n"
@@ -78,6 +89,17 @@ Options parse(int argc, char** argv) {
       o.every = std::max(1, std::atoi(value.c_str()));
     } else if (arg == "--seed") {
       o.scene.seed = std::strtoull(value.c_str(), nullptr, 10);
+    } else if (arg == "--floor" && (value == "mesh" || value == "box" || value == "plane")) {
+      o.scene.floor = value == "mesh"  ? adb::demo::Floor::Mesh
+                      : value == "box" ? adb::demo::Floor::Box
+                                       : adb::demo::Floor::Plane;
+    } else if (arg == "--mesh") {
+      try {
+        o.scene.meshes.push_back(adb::io::loadMesh(value));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "adb-demo: %s\n", e.what());
+        std::exit(2);
+      }
     } else if (arg == "--out") {
       o.out = value;
     } else if (arg == "--budget-us") {
@@ -115,7 +137,8 @@ std::string budgetText(const adb::FrameSettings& f) {
 void writeCsvHeader(std::ofstream& csv) {
   csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y,"
          "frame_us,contact_us,pairs,exact_pairs,quality_pairs,cut_pairs,node_pairs,exact_contacts,"
-         "plausible_contacts,mean_confidence,worst_confidence\n";
+         "plausible_contacts,mean_confidence,worst_confidence,body_penetration,bin_penetration,"
+         "floor_penetration,floor_penetration_relative\n";
 }
 
 void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
@@ -124,12 +147,15 @@ void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
       << s.kinetic << ',' << s.energy << ',' << s.atRest << ',' << s.lowestY << ',' << f.micros
       << ',' << f.contactMicros << ',' << f.pairs << ',' << f.exactPairs << ',' << f.qualityPairs << ',' << f.cutPairs
       << ',' << f.nodePairs << ',' << f.exactContacts << ',' << f.plausibleContacts << ','
-      << f.meanConfidence << ',' << f.worstConfidence << '\n';
+      << f.meanConfidence << ',' << f.worstConfidence << ',' << s.bodyPenetration << ','
+      << s.binPenetration << ',' << s.floorPenetration << ',' << s.floorPenetrationRelative
+      << '\n';
 }
 
 struct Totals {
   std::vector<double> stepSeconds, frameMicros;
   double worstPenetration = 0, lowest = 1e300, confidenceSum = 0, worstConfidence = 1;
+  double worstBody = 0, worstBin = 0, worstFloor = 0, worstFloorRelative = 0;
   std::uint64_t pairs = 0, cutPairs = 0, exactContacts = 0, plausibleContacts = 0;
 
   void add(const adb::demo::StepStats& s) {
@@ -137,6 +163,10 @@ struct Totals {
     frameMicros.push_back(s.frame.micros);
     worstPenetration = std::max(worstPenetration, s.maxPenetration);
     lowest = std::min(lowest, s.lowestY);
+    worstBody = std::max(worstBody, s.bodyPenetration);
+    worstBin = std::max(worstBin, s.binPenetration);
+    worstFloor = std::max(worstFloor, s.floorPenetration);
+    worstFloorRelative = std::max(worstFloorRelative, s.floorPenetrationRelative);
     confidenceSum += s.frame.meanConfidence;
     worstConfidence = std::min(worstConfidence, s.frame.worstConfidence);
     pairs += s.frame.pairs;
@@ -166,16 +196,21 @@ int main(int argc, char** argv) {
     return 2;
   }
   adb::demo::PileScene& scene = *made;
-  std::printf("pile scene: %d bodies, %zu triangles in all, backend %s, %d steps of 1/60 s\n",
-              scene.bodyCount(), scene.triangleCount(), backend, o.steps);
+  const char* floors[] = {"box meshes", "btBoxShape floor and walls",
+                          "btStaticPlaneShape floor, btBoxShape walls"};
+  std::printf("pile scene: %d bodies, %zu triangles in all, backend %s, %d steps of 1/60 s\n"
+              "bin: %s\n",
+              scene.bodyCount(), scene.triangleCount(), backend, o.steps,
+              floors[static_cast<int>(o.scene.floor)]);
   if (adbBackend) {
     const adb::FrameSettings& f = o.scene.frame;
     std::printf("budget %s, p_min %.3g, k_min %d%s, p_accept %.3g%s\n", budgetText(f).c_str(),
                 f.pMin, f.kMin, f.kMin == 0 ? " (never stop on quality)" : "", f.pAccept,
                 f.softenPlausible ? ", plausible contacts softened" : "");
   }
-  std::printf("\n%6s %9s %9s %8s %6s %5s %9s %10s %9s %8s\n", "step", "ms/step", "pairs us",
-              "contacts", "pairs", "cut", "conf.", "max pen.", "energy", "at rest");
+  std::printf("\n%6s %9s %9s %8s %6s %5s %9s %10s %10s %9s %8s\n", "step", "ms/step",
+              "pairs us", "contacts", "pairs", "cut", "conf.", "max pen.", "floor pen.", "energy",
+              "at rest");
 
   std::ofstream csv;
   if (!o.out.empty()) {
@@ -190,10 +225,10 @@ int main(int argc, char** argv) {
     totals.add(last);
     if (csv) writeCsvRow(csv, step, last);
     if (step % o.every == 0 || step == o.steps) {
-      std::printf("%6d %9.3f %9.0f %8d %6u %5u %9.4f %10.4f %9.3f %5d/%d\n", step,
+      std::printf("%6d %9.3f %9.0f %8d %6u %5u %9.4f %10.4f %10.4f %9.3f %5d/%d\n", step,
                   last.seconds * 1e3, last.frame.micros, last.contacts, last.frame.pairs,
                   last.frame.cutPairs, last.frame.meanConfidence, last.maxPenetration,
-                  last.energy, last.atRest, scene.bodyCount());
+                  last.floorPenetration, last.energy, last.atRest, scene.bodyCount());
       std::fflush(stdout);
     }
   }
@@ -213,6 +248,15 @@ int main(int argc, char** argv) {
               totals.confidenceSum / static_cast<double>(o.steps), totals.worstConfidence,
               totals.worstPenetration, totals.lowest, last.energy, last.atRest,
               scene.bodyCount());
+  // Penetrations apart: contacts between bodies, contacts with the bin, and the floor's
+  // by geometry (lowest vertex below y = 0; relative: over the body's bounding-box diagonal).
+  std::printf("\n| max pen. body-body | max pen. body-bin | floor pen. max | floor pen. max "
+              "/ body size | floor pen. (last) | floor pen. (last) / body size |\n"
+              "|---|---|---|---|---|---|\n"
+              "| %.4f | %.4f | %.4f | %.2f %% | %.4f | %.2f %% |\n",
+              totals.worstBody, totals.worstBin, totals.worstFloor,
+              totals.worstFloorRelative * 100, last.floorPenetration,
+              last.floorPenetrationRelative * 100);
   if (csv) std::printf("\nper-step figures: %s/steps.csv\n", o.out.c_str());
   // Below the floor (y = 0) by more than a body means one fell through: say so in the exit.
   return totals.lowest < -0.5 ? 1 : 0;

@@ -4,6 +4,7 @@
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 #include <BulletCollision/Gimpact/btGImpactShape.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -46,11 +47,23 @@ std::vector<TriangleMesh> bodyMeshes(std::size_t triangles) {
           principalFrame(gen::makeTorusKnot(2, 3, 0.3, 0.045, along, 8))};
 }
 
+// A mesh scaled about its bounds' centre so that its largest extent is `size` (the generated
+// bodies are about 0.8 across): files come in any unit.
+TriangleMesh scaledTo(const TriangleMesh& mesh, double size) {
+  const Vec3 centre = mesh.bounds().center();
+  const double extent = mesh.bounds().extent().maxCoeff();
+  const double k = extent > 0 ? size / extent : 1.0;
+  std::vector<Vec3> vertices;
+  vertices.reserve(mesh.vertices().size());
+  for (const Vec3& v : mesh.vertices()) vertices.push_back((v - centre) * k);
+  return TriangleMesh(std::move(vertices), mesh.triangles(), mesh.name());
+}
+
 struct Box {
   Vec3 half, centre;
 };
 
-// The bin: a floor whose top is y = 0 and four walls.
+// The bin: a floor whose top is y = 0 and four walls (the floor first: Floor::Plane replaces it).
 const Box kBin[] = {{Vec3(2.5, 0.25, 2.5), Vec3(0, -0.25, 0)},
                     {Vec3(0.25, 1.5, 2.5), Vec3(2.75, 1.25, 0)},
                     {Vec3(0.25, 1.5, 2.5), Vec3(-2.75, 1.25, 0)},
@@ -70,6 +83,9 @@ struct PileScene::Impl {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<Vec3> localInertia;  // per dynamic body, unit mass
+  std::vector<std::vector<Vec3>> usedVertices;         // per kind of body
+  std::vector<const std::vector<Vec3>*> bodyVertices;  // per dynamic body, its kind's used ones
+  std::vector<double> bodySize;               // per dynamic body, its bounding-box diagonal
 
   ~Impl() {
     for (auto& b : bodies) world->removeRigidBody(b.get());
@@ -122,16 +138,49 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
                                                       &s.solver, s.configuration.get());
   s.world->setGravity(btVector3(0, static_cast<btScalar>(-kGravity), 0));
 
+  bool first = true;
   for (const Box& b : kBin) {
-    const auto data = MeshData::build(gen::makeBox(b.half, 4));
     btTransform at = btTransform::getIdentity();
     at.setOrigin(toBt(b.centre));
-    s.addBody(s.makeShape(data, adb, false), 0.0, Vec3::Zero(), at);
+    btCollisionShape* shape = nullptr;
+    if (settings.floor == Floor::Plane && first) {
+      // The floor's top, y = kFloorTop: the plane is y = 0 through the origin.
+      s.shapes.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0),
+                                                              static_cast<btScalar>(kFloorTop)));
+      shape = s.shapes.back().get();
+      at.setOrigin(btVector3(0, 0, 0));
+    } else if (settings.floor != Floor::Mesh) {
+      s.shapes.push_back(std::make_unique<btBoxShape>(toBt(b.half)));
+      shape = s.shapes.back().get();
+    } else {
+      shape = s.makeShape(MeshData::build(gen::makeBox(b.half, 4)), adb, false);
+    }
+    s.addBody(shape, 0.0, Vec3::Zero(), at);
+    first = false;
   }
 
   std::vector<std::shared_ptr<const MeshData>> kinds;
-  for (TriangleMesh& mesh : bodyMeshes(settings.trianglesPerBody)) {
-    kinds.push_back(MeshData::build(std::move(mesh)));
+  if (settings.meshes.empty()) {
+    for (TriangleMesh& mesh : bodyMeshes(settings.trianglesPerBody)) {
+      kinds.push_back(MeshData::build(std::move(mesh)));
+    }
+  } else {
+    for (const TriangleMesh& mesh : settings.meshes) {
+      kinds.push_back(MeshData::build(principalFrame(scaledTo(mesh, 0.8))));
+    }
+  }
+  const int kindCount = static_cast<int>(kinds.size());
+  // The vertices the triangles use, per kind: a file may hold others, anywhere.
+  s.usedVertices.resize(kinds.size());
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    const TriangleMesh& mesh = kinds[k]->mesh;
+    std::vector<bool> used(mesh.vertices().size(), false);
+    for (const Triangle& t : mesh.triangles()) {
+      for (std::uint32_t v : t) used[v] = true;
+    }
+    for (std::size_t v = 0; v < used.size(); ++v) {
+      if (used[v]) s.usedVertices[k].push_back(mesh.vertices()[v]);
+    }
   }
   std::vector<btCollisionShape*> kindShapes;  // GImpact shapes are shared between bodies too
   for (const auto& k : kinds) kindShapes.push_back(s.makeShape(k, adb, true));
@@ -139,7 +188,7 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
   std::mt19937_64 rng(settings.seed);
   std::uniform_real_distribution<double> jitter(-0.1, 0.1);
   for (int i = 0; i < settings.bodies; ++i) {
-    const int kind = i % 3;
+    const int kind = i % kindCount;
     // A 3 x 3 grid per layer, 0.9 apart, layers 0.9 apart, from 1 unit above the floor.
     const int layer = i / 9, cell = i % 9;
     const Vec3 at(-0.9 + 0.9 * (cell % 3) + jitter(rng), 1.0 + 0.9 * layer,
@@ -153,6 +202,8 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
     m_dynamic.push_back(s.addBody(shape, 1.0, inertia, pose));
     m_dynamic.back()->setActivationState(DISABLE_DEACTIVATION);  // measure every step
     s.localInertia.push_back(inertia);
+    s.bodyVertices.push_back(&s.usedVertices[static_cast<std::size_t>(kind)]);
+    s.bodySize.push_back(kinds[kind]->mesh.bounds().extent().norm());
     m_triangles += kinds[kind]->mesh.triangleCount();
   }
 }
@@ -169,10 +220,14 @@ StepStats PileScene::step() {
 
   for (int m = 0; m < s.dispatcher->getNumManifolds(); ++m) {
     const btPersistentManifold* manifold = s.dispatcher->getManifoldByIndexInternal(m);
+    // The bin's parts are the only static objects.
+    const bool bin = manifold->getBody0()->isStaticObject() || manifold->getBody1()->isStaticObject();
+    double& kindMax = bin ? st.binPenetration : st.bodyPenetration;
     for (int p = 0; p < manifold->getNumContacts(); ++p) {
       ++st.contacts;
-      st.maxPenetration =
-          std::max(st.maxPenetration, -static_cast<double>(manifold->getContactPoint(p).getDistance()));
+      const double depth = -static_cast<double>(manifold->getContactPoint(p).getDistance());
+      st.maxPenetration = std::max(st.maxPenetration, depth);
+      kindMax = std::max(kindMax, depth);
     }
   }
   st.lowestY = 1e300;
@@ -189,6 +244,17 @@ StepStats PileScene::step() {
     st.energy += kinetic + kGravity * (y - kFloorTop);
     st.atRest += v.length() < 0.05 && b->getAngularVelocity().length() < 0.05 ? 1 : 0;
     st.lowestY = std::min(st.lowestY, y);
+    // The lowest vertex: world y = row 1 of the basis . vertex + origin y. Bodies above the
+    // floor by more than their size cannot reach it.
+    if (y - kFloorTop < s.bodySize[i]) {
+      const btVector3 row = b->getWorldTransform().getBasis().getRow(1);
+      const Vec3 r(row.x(), row.y(), row.z());
+      double lowest = 1e300;
+      for (const Vec3& x : *s.bodyVertices[i]) lowest = std::min(lowest, r.dot(x));
+      const double depth = std::max(0.0, kFloorTop - (lowest + y));
+      st.floorPenetration = std::max(st.floorPenetration, depth);
+      st.floorPenetrationRelative = std::max(st.floorPenetrationRelative, depth / s.bodySize[i]);
+    }
   }
   return st;
 }

@@ -1,6 +1,7 @@
-// The demo's scene: generated concave bodies (tori, gears, torus knots) dropped into a bin,
-// simulated in a btDiscreteDynamicsWorld with either adb's MeshShape or Bullet's GImpact, on
-// the same meshes, poses and time step.
+// The demo's scene: generated concave bodies (tori, gears, torus knots), or copies of a given
+// mesh, dropped into a bin, simulated in a btDiscreteDynamicsWorld with either adb's MeshShape
+// or Bullet's GImpact, on the same meshes, poses, bin and time step. The bin's floor and walls
+// are triangle meshes, Bullet boxes, or a plane floor between box walls.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
@@ -16,11 +17,23 @@ namespace adb::demo {
 
 enum class Backend { Adb, GImpact };
 
+/// What the bin is made of (the same for both backends).
+enum class Floor {
+  Mesh,   ///< floor and walls as box meshes (MeshShape, or btBvhTriangleMeshShape for GImpact)
+  Box,    ///< floor and walls as btBoxShape, the way Bullet users build bins
+  Plane,  ///< floor a btStaticPlaneShape (y = 0), walls as btBoxShape
+};
+
 struct SceneSettings {
   Backend backend = Backend::Adb;
   int bodies = 24;
   std::size_t trianglesPerBody = 1500;  ///< approximate, per generated body
   std::uint64_t seed = 1;
+  Floor floor = Floor::Mesh;
+  /// Non-empty: the bodies' meshes (cycled through), in place of the generated ones; each is
+  /// scaled to 0.8 across its largest extent and moved to its principal frame;
+  /// trianglesPerBody is then ignored.
+  std::vector<TriangleMesh> meshes;
   FrameSettings frame;  ///< adb's per-step budget and quality knobs (adb backend)
 };
 
@@ -29,6 +42,13 @@ struct StepStats {
   double seconds = 0;         ///< wall clock of stepSimulation
   int contacts = 0;           ///< points in all manifolds
   double maxPenetration = 0;  ///< deepest contact, >= 0
+  double bodyPenetration = 0; ///< deepest contact between two dynamic bodies, >= 0
+  double binPenetration = 0;  ///< deepest contact between a body and the floor or a wall, >= 0
+  /// Deepest vertex below the floor's top (y = 0), from the bodies' transforms and mesh
+  /// vertices, whatever the contacts say; >= 0. And the same over each body's size (its
+  /// bounding-box diagonal), the worst body.
+  double floorPenetration = 0;
+  double floorPenetrationRelative = 0;
   double kinetic = 0;         ///< translational + rotational kinetic energy
   double energy = 0;          ///< kinetic + potential (g = 9.81, height above the bin floor)
   int atRest = 0;             ///< bodies slower than 0.05 m/s and 0.05 rad/s
