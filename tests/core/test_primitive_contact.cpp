@@ -254,3 +254,57 @@ TEST(PrimitiveContact, OrientedBoxQueryFindsEveryTriangleTheBruteForceDoesAndFew
 
 }  // namespace
 }  // namespace adb
+
+namespace adb {
+namespace {
+
+TEST(PrimitiveContact, CapsuleThroughAFaceNearItsEndPushesOneWayOnly) {
+  // The short part (0.1 above the plane) is within the radius: its end contact would push
+  // down while the through contact pushes up. Only the through contact remains.
+  const Vec3 a(-10, -10, 0), b(10, -10, 0), c(0, 10, 0);
+  for (const auto& [p0, p1] : {std::pair{Vec3(0, 0, 0.1), Vec3(0, 0, -0.9)},
+                               std::pair{Vec3(-1, 0, 0.3), Vec3(1, 0, -0.3)}}) {
+    PrimitiveContacts found;
+    capsuleTriangleContacts(p0, p1, 0.5, a, b, c, 0.05, found);
+    ASSERT_GE(found.count, 1);
+    for (int i = 0; i < found.count; ++i) {
+      EXPECT_GT(found.points[i].normal.dot(found.points[0].normal), 0.0) << "contact " << i;
+    }
+  }
+}
+
+TEST(PrimitiveContact, CapsuleCrossingBesideATriangleKeepsOneSide) {
+  // The axis crosses z = 0 beside the triangle (x < 0); its ends are on both sides of the
+  // plane, both within reach of the edge x = 0.
+  const Vec3 a(0, -1, 0), b(2, 0, 0), c(0, 1, 0);
+  PrimitiveContacts found;
+  capsuleTriangleContacts(Vec3(-0.1, 0, 0.3), Vec3(-0.1, 0, -0.3), 0.35, a, b, c, 0.05, found);
+  ASSERT_GE(found.count, 1);
+  for (int i = 0; i < found.count; ++i) {
+    for (int j = 0; j < i; ++j) {
+      EXPECT_GT(found.points[i].normal.dot(found.points[j].normal), 0.0) << i << " " << j;
+    }
+  }
+}
+
+TEST(PrimitiveContact, NonFiniteOrNegativeSizesGiveNoContact) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  for (const Vec3& half : {Vec3(inf, 1, 1), Vec3(nan, 1, 1), Vec3(-1, 1, 1)}) {
+    OrientedBox box;
+    box.half = half;
+    PrimitiveContacts found;
+    boxTriangleContacts(box, a, b, c, 1.0, found);
+    EXPECT_EQ(found.count, 0);
+  }
+  for (const double r : {inf, nan, -1.0}) {
+    PrimitiveContacts found;
+    sphereTriangleContacts(Vec3(0, 0, 0.1), r, a, b, c, 1.0, found);
+    capsuleTriangleContacts(Vec3(0, 0, 0.1), Vec3(0.1, 0, 0.1), r, a, b, c, 1.0, found);
+    EXPECT_EQ(found.count, 0) << r;
+  }
+}
+
+}  // namespace
+}  // namespace adb

@@ -55,7 +55,12 @@ void Dispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,
                                            const btDispatcherInfo& info,
                                            btDispatcher* dispatcher) {
   m_scheduler->begin();
-  btCollisionDispatcher::dispatchAllCollisionPairs(pairCache, info, dispatcher);
+  try {
+    btCollisionDispatcher::dispatchAllCollisionPairs(pairCache, info, dispatcher);
+  } catch (...) {
+    m_scheduler->abandon();  // else later contactTests would be deferred into no step
+    throw;
+  }
   m_scheduler->run(m_settings, info);
 }
 

@@ -22,7 +22,11 @@ constexpr std::uint64_t kMinGrowth = 64;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 // What a whole pair (mesh against a convex shape, a plane, ...) never run is expected to
 // cost: a few nodes and triangles, so that a tight budget is not overrun at first contact.
-constexpr std::uint64_t kFirstWholeWork = 32;
+constexpr std::uint64_t kFirstWholeWork = 128;
+// Steps a whole pair that costs more than the whole budget may be skipped in a row before it
+// runs regardless: two kept steps hold a resting body; a budget smaller than one pair
+// overruns by that pair every third step rather than letting the body fall.
+constexpr std::uint64_t kMaxSkippedSteps = 2;
 // Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
 // count most, one odd step does not swing the next step's shares.
 constexpr double kSmoothing = 0.2;
@@ -92,7 +96,8 @@ void FrameScheduler::defer(ManifoldAlgorithm* algorithm, const btCollisionObject
                     body0->m_partId,
                     body0->m_index,
                     body1->m_partId,
-                    body1->m_index};
+                    body1->m_index,
+                    static_cast<std::uint32_t>(m_pairs.size() + m_wholes.size())};
   (algorithm->refinable() ? m_pairs : m_wholes).push_back(pair);
 }
 
@@ -102,11 +107,16 @@ void FrameScheduler::noteBadPose(const btCollisionObject* body, PoseDefect defec
   const BadPose bad{body, body->getWorldArrayIndex(), body->getUserPointer(), defect};
   if (m_badNamed < FrameStats::kNamedBadPoses) m_badNamedPoses[m_badNamed++] = bad;
   if (!m_badPoseCallback) return;
+  // The callback may query the world (contactTest): its pairs must be answered at once, not
+  // deferred into this step (Bullet frees contactTest's algorithms when it returns).
+  const bool collecting = m_collecting;
+  m_collecting = false;
   try {
     m_badPoseCallback(bad);
   } catch (...) {
     // Nothing may leave Bullet's step; the body is named in FrameStats all the same.
   }
+  m_collecting = collecting;
 }
 
 void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& info) {
@@ -121,12 +131,12 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
   m_undecided = 0;
   m_stats.otherPairs = static_cast<std::uint32_t>(m_wholes.size());
   // Whole pairs the budget skipped run first next time (the longest waiting first): kept
-  // contacts hold a body only while it barely moves. A stable order keeps node-pair
-  // budgets reproducible.
-  std::stable_sort(m_wholes.begin(), m_wholes.end(),
-                   [](const DeferredPair& x, const DeferredPair& y) {
-                     return x.algorithm->lastRun() < y.algorithm->lastRun();
-                   });
+  // contacts hold a body only while it barely moves. Ties keep the dispatch's order, so that
+  // node-pair budgets stay reproducible (std::sort: stable_sort would allocate).
+  std::sort(m_wholes.begin(), m_wholes.end(), [](const DeferredPair& x, const DeferredPair& y) {
+    const std::uint64_t rx = x.algorithm->lastRun(), ry = y.algorithm->lastRun();
+    return rx != ry ? rx < ry : x.sequence < y.sequence;
+  });
   firstPass(settings);
   refine(settings);
   writeContacts(settings);
@@ -245,7 +255,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
       const double micros = microsLeft(settings);
       const std::uint64_t among = group ? 1 : waiting;
       runWhole(pair, share(settings, among),
-               std::isinf(micros) ? micros : micros / static_cast<double>(among));
+               std::isinf(micros) ? micros : micros / static_cast<double>(among), settings);
       --waiting;
     }
     for (DeferredPair& pair : m_pairs) {
@@ -270,21 +280,33 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
   }
 }
 
-bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, double microsShare) {
+bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, double microsShare,
+                              const FrameSettings& settings) {
+  ManifoldAlgorithm& algorithm = *pair.algorithm;
   // Its cost last time and a quarter more (bodies settling into each other touch more
-  // triangles step by step), at least a few nodes for a pair never run.
-  const std::uint64_t last = pair.algorithm->lastWork();
+  // triangles step by step; at least a few nodes for a pair never run), in work and in time
+  // (a GJK pair costs far more per unit than a closed-form one).
+  const std::uint64_t last = algorithm.lastWork();
   const std::uint64_t expected = std::max(last + last / 4, kFirstWholeWork);
-  if (expected > shareUnits ||
-      static_cast<double>(expected) * m_microsPerWholeUnit > microsShare) {
-    return false;
+  const double expectedMicros = algorithm.lastMicros() > 0.0
+                                    ? 1.25 * algorithm.lastMicros()
+                                    : static_cast<double>(expected) * m_microsPerWholeUnit;
+  if (expected > shareUnits || expectedMicros > microsShare) {
+    // A pair expected to cost more than the whole budget would never run again (the
+    // estimate is re-measured only by running), and its kept contacts would not hold a
+    // moving body: after kMaxSkippedSteps it runs regardless, the step overrunning by that
+    // one pair.
+    const bool neverFits =
+        expected > settings.budgetNodePairs || expectedMicros > settings.budgetMicros;
+    if (!neverFits || m_step - algorithm.lastRun() <= kMaxSkippedSteps) return false;
   }
   PairWrappers wrappers(pair);
   btManifoldResult result(&wrappers.body0, &wrappers.body1);
   const Clock::time_point start = Clock::now();
   const std::uint64_t work =
-      pair.algorithm->collideScheduled(&wrappers.body0, &wrappers.body1, *m_info, &result, m_step);
+      algorithm.collideScheduled(&wrappers.body0, &wrappers.body1, *m_info, &result, m_step);
   const double micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  algorithm.setLastMicros(micros);
   if (work >= kFirstGrant && micros > 0.0) {  // long enough to measure
     m_microsPerWholeUnit += kSmoothing * (micros / static_cast<double>(work) - m_microsPerWholeUnit);
   }
@@ -309,7 +331,7 @@ void FrameScheduler::keepSkipped() {
 void FrameScheduler::refine(const FrameSettings& settings) {
   // Whole pairs that did not fit their share: in turn, while what is left covers them.
   for (DeferredPair& pair : m_wholes) {
-    if (!pair.written) runWhole(pair, share(settings, 1), microsLeft(settings));
+    if (!pair.written) runWhole(pair, share(settings, 1), microsLeft(settings), settings);
   }
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {

@@ -34,6 +34,7 @@ struct DeferredPair {
   const btCollisionShape* shape1;
   btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
   int partId0, index0, partId1, index1;
+  std::uint32_t sequence;  // order of the dispatch: ties in the whole pairs' order
   // Scheduling state of this step.
   std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
   double confidence = 0.0;     // see FrameStats::meanConfidence
@@ -71,6 +72,9 @@ class FrameScheduler {
   void setBadPoseCallback(std::function<void(const BadPose&)> callback) {
     m_badPoseCallback = std::move(callback);
   }
+  /// Ends the collection without a run (the dispatch threw): later queries are answered at
+  /// once again.
+  void abandon() { m_collecting = false; }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -78,9 +82,11 @@ class FrameScheduler {
   void firstPass(const FrameSettings& settings);
   void refine(const FrameSettings& settings);
   /// Collides a pair that is not refined (mesh against a convex shape, a plane or another
-  /// concave shape) when its expected cost fits in `share` node pairs and the time left;
-  /// false (not run) otherwise.
-  bool runWhole(DeferredPair& pair, std::uint64_t share, double microsShare);
+  /// concave shape) when its last cost fits in `share` node pairs and `microsShare`, or when
+  /// it costs more than the whole budget and has waited kMaxSkippedSteps; false (not run)
+  /// otherwise.
+  bool runWhole(DeferredPair& pair, std::uint64_t share, double microsShare,
+                const FrameSettings& settings);
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
@@ -104,7 +110,7 @@ class FrameScheduler {
   double m_microsPerNodePair = 0.25;
   double m_writeMicros = 5.0;       // writing a decided pair's contacts
   double m_lateWriteMicros = 20.0;  // writing a cut pair's, after the queries
-  double m_microsPerWholeUnit = 0.1;  // a whole pair's time per unit of work
+  double m_microsPerWholeUnit = 0.1;  // a whole pair's time per unit: for one never timed
   // Pairs of this step not queried yet, and queried but neither decided nor written.
   std::size_t m_unqueried = 0;
   std::size_t m_undecided = 0;

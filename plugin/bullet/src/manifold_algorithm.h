@@ -58,6 +58,9 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
     m_lastRun = step;
     return m_lastWork;
   }
+  /// The scheduler's measure of the last collideScheduled's time (microseconds).
+  double lastMicros() const { return m_lastMicros; }
+  void setLastMicros(double micros) { m_lastMicros = micros; }
   /// Work units of the last collideNow: the next step's estimate of this pair's cost.
   std::uint64_t lastWork() const { return m_lastWork; }
   /// The scheduler's step at which collideScheduled last ran (0: never).
@@ -94,6 +97,7 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
   std::uint64_t m_lastWork = 0;
   std::uint64_t m_lastRun = 0;
+  double m_lastMicros = 0.0;
 };
 
 /// The dispatcher's factory for an algorithm constructed as Algo(ci, body0, body1, swapped);

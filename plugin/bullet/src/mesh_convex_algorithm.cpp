@@ -129,7 +129,11 @@ std::uint64_t generalConvexContacts(btDispatcher& dispatcher, const btCollisionO
   result.setPersistentManifold(scratch);
   btTriangleShape triangle(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
   triangle.setMargin(mesh->getMargin());
-  forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+  // The result's slot that holds the mesh: not always the algorithm's order (a compound
+  // calls its child as (child, other) with a result made as (other, compound)).
+  const bool meshInSlot0 = result.getBody0Internal() == meshWrap->getCollisionObject();
+  const btCollisionObjectWrapper* saved = meshInSlot0 ? result.getBody0Wrap() : result.getBody1Wrap();
+  visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
     ++visited;
     const Triangle& tri = tree.triangles()[t];
     if (!triangleNearBox(vertices[tri[0]], vertices[tri[1]], vertices[tri[2]], local.box,
@@ -141,11 +145,11 @@ std::uint64_t generalConvexContacts(btDispatcher& dispatcher, const btCollisionO
     const btCollisionObjectWrapper triangleWrap(meshWrap, &triangle,
                                                 meshWrap->getCollisionObject(), meshPose, 0,
                                                 index);
-    // The triangle takes the mesh's place in the result, in the result's body order, so the
-    // normals come out the way the manifold holds its bodies.
+    // The triangle takes the mesh's place: in the result's slot for it, and in the call in
+    // this algorithm's order (the manifolds', which Bullet's points follow).
     const btCollisionObjectWrapper* first = meshIsBody0 ? &triangleWrap : convexWrap;
     const btCollisionObjectWrapper* second = meshIsBody0 ? convexWrap : &triangleWrap;
-    if (meshIsBody0) {
+    if (meshInSlot0) {
       result.setBody0Wrap(&triangleWrap);
     } else {
       result.setBody1Wrap(&triangleWrap);
@@ -161,10 +165,10 @@ std::uint64_t generalConvexContacts(btDispatcher& dispatcher, const btCollisionO
       selection.add({p.m_normalWorldOnB, p.m_positionWorldOnB, p.getDistance(), index});
     }
   });
-  if (meshIsBody0) {
-    result.setBody0Wrap(meshWrap);
+  if (meshInSlot0) {
+    result.setBody0Wrap(saved);
   } else {
-    result.setBody1Wrap(meshWrap);
+    result.setBody1Wrap(saved);
   }
   result.setPersistentManifold(pairManifold);
   dispatcher.releaseManifold(scratch);
@@ -205,7 +209,7 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
   }
 
   std::uint64_t visited = 0;
-  forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+  visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
     ++visited;
     const Triangle& tri = tree.triangles()[t];
     const Vec3& a = vertices[tri[0]];

@@ -11,6 +11,9 @@
 namespace adb {
 namespace {
 
+// Contacts of one capsule and one triangle kept together push within 60 degrees (cosine) of
+// the deepest one: two that push against each other only squeeze the capsule.
+constexpr double kSameWay = 0.5;
 // Edge-edge axes compete with a 5 % handicap, as in ODE and triangleContact: a box resting
 // on a face must not flicker to an edge axis of nearly the same depth.
 constexpr double kEdgeHandicap = 0.05;
@@ -47,10 +50,37 @@ void pointContact(const Vec3& x, double radius, const Vec3& a, const Vec3& b, co
   const Vec3 q = closestPointOnTriangle(x, a, b, c);
   const Vec3 v = x - q;
   const double distance = v.norm();
-  if (!(distance - radius <= reach)) return;  // also refuses NaN
+  if (!(distance - radius <= reach) || !std::isfinite(distance)) return;  // also refuses NaN
   Vec3 normal = distance > 0.0 ? Vec3(v / distance) : unitNormal(a, b, c);
   if (normal.isZero()) normal = Vec3::UnitZ();  // a point on a degenerate triangle
   out.add(q, normal, distance - radius);
+}
+
+// The capsule axis's closest point to the triangle's edges, when it is not an end (the ends
+// are point contacts of their own).
+void axisEdgeContact(const Vec3& p0, const Vec3& p1, double radius, const Vec3& a,
+                     const Vec3& b, const Vec3& c, double reach, PrimitiveContacts& out) {
+  Vec3 onAxis = p0, onTriangle = a;
+  double best = std::numeric_limits<double>::infinity();
+  const Vec3* corners[3] = {&a, &b, &c};
+  for (int e = 0; e < 3; ++e) {
+    Vec3 s, t;
+    detail::closestSegmentPoints(p0, p1, *corners[e], *corners[(e + 1) % 3], s, t);
+    const double d = (s - t).squaredNorm();
+    if (d < best) {
+      best = d;
+      onAxis = s;
+      onTriangle = t;
+    }
+  }
+  const double length2 = (p1 - p0).squaredNorm();
+  const double endTolerance = 1e-12 * length2;
+  if ((onAxis - p0).squaredNorm() <= endTolerance || (onAxis - p1).squaredNorm() <= endTolerance) {
+    return;
+  }
+  const double distance = std::sqrt(best);
+  if (!(distance - radius <= reach) || !(distance > 0.0)) return;
+  out.add(onTriangle, (onAxis - onTriangle) / distance, distance - radius);
 }
 
 }  // namespace
@@ -98,19 +128,20 @@ bool triangleNearBox(const Vec3& a, const Vec3& b, const Vec3& c, const Oriented
 
 void sphereTriangleContacts(const Vec3& centre, double radius, const Vec3& a, const Vec3& b,
                             const Vec3& c, double reach, PrimitiveContacts& out) {
+  if (!std::isfinite(radius) || radius < 0.0) return;
   pointContact(centre, radius, a, b, c, reach, out);
 }
 
 void capsuleTriangleContacts(const Vec3& p0, const Vec3& p1, double radius, const Vec3& a,
                              const Vec3& b, const Vec3& c, double reach,
                              PrimitiveContacts& out) {
-  pointContact(p0, radius, a, b, c, reach, out);
-  pointContact(p1, radius, a, b, c, reach, out);
+  if (!std::isfinite(radius) || radius < 0.0) return;
   const Vec3 n = (b - a).cross(c - a);
   const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
   if ((s0 < 0.0 && s1 > 0.0) || (s0 > 0.0 && s1 < 0.0)) {
     // The axis crosses the triangle's plane: through the triangle, the capsule is pushed out
-    // along the normal, towards the side of its longer part.
+    // along the normal, towards the side of its longer part. That one contact only: an end
+    // contact on the shorter side would push the other way.
     const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
     if (insideTriangle(x, a, b, c, n)) {
       const Vec3 unit = unitNormal(a, b, c);
@@ -120,30 +151,27 @@ void capsuleTriangleContacts(const Vec3& p0, const Vec3& p1, double radius, cons
       return;
     }
   }
-  // Otherwise the closest points are an end against the face (above) or the axis against
-  // an edge: that one is added when it is not an end.
-  Vec3 onAxis = p0, onTriangle = a;
-  double best = std::numeric_limits<double>::infinity();
-  const Vec3* corners[3] = {&a, &b, &c};
-  for (int e = 0; e < 3; ++e) {
-    Vec3 s, t;
-    detail::closestSegmentPoints(p0, p1, *corners[e], *corners[(e + 1) % 3], s, t);
-    const double d = (s - t).squaredNorm();
-    if (d < best) {
-      best = d;
-      onAxis = s;
-      onTriangle = t;
+  // Otherwise: each end within reach of the triangle (a capsule lying on a face rests on two
+  // points) and the axis's closest point to an edge, kept only where they push within 60
+  // degrees of the deepest of them (an axis crossing the plane beside the triangle has its
+  // ends on both sides, their normals 110 degrees apart).
+  PrimitiveContacts found;
+  pointContact(p0, radius, a, b, c, reach, found);
+  pointContact(p1, radius, a, b, c, reach, found);
+  axisEdgeContact(p0, p1, radius, a, b, c, reach, found);
+  int deepest = -1;
+  for (int i = 0; i < found.count; ++i) {
+    if (deepest < 0 || found.points[i].separation < found.points[deepest].separation) deepest = i;
+  }
+  if (deepest < 0) return;
+  const Vec3 normal = found.points[deepest].normal;
+  for (int i = 0; i < found.count; ++i) {
+    if (i == deepest || found.points[i].normal.dot(normal) > kSameWay) {
+      out.add(found.points[i].onTriangle, found.points[i].normal, found.points[i].separation);
     }
   }
-  const double length2 = (p1 - p0).squaredNorm();
-  const double endTolerance = 1e-12 * length2;
-  if ((onAxis - p0).squaredNorm() <= endTolerance || (onAxis - p1).squaredNorm() <= endTolerance) {
-    return;
-  }
-  const double distance = std::sqrt(best);
-  if (!(distance - radius <= reach) || !(distance > 0.0)) return;
-  out.add(onTriangle, (onAxis - onTriangle) / distance, distance - radius);
 }
+
 
 namespace {
 
@@ -312,6 +340,7 @@ void boxTriangleContacts(const OrientedBox& box, const Vec3& a, const Vec3& b, c
   const Vec3 v[3] = {toBox * (a - box.centre), toBox * (b - box.centre), toBox * (c - box.centre)};
   if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) return;
   const Vec3 h = box.half;
+  if (!h.allFinite() || (h.array() < 0.0).any()) return;
   const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
   const BoxAxis axis = deepestAxis(h, v, n, reach);
   if (!(axis.separation <= reach)) return;

@@ -6,7 +6,8 @@
 // the rest. Pairs that are not mesh-mesh (a mesh against a convex shape, a plane or another
 // concave shape) run whole or not at all: those with a static body may take all that is
 // left, the others an even share; one that does not fit keeps its last contacts (refreshed
-// for the new poses) and goes first next step. Each mesh-mesh pair is given what it needed
+// for the new poses) and goes first next step, and one expected to cost more than the whole
+// budget runs every third step regardless (its estimate is only re-measured by running). Each mesh-mesh pair is given what it needed
 // last step, at most an even share of what is left; then, while budget is left, the pair
 // whose contacts are least certain gets as much again, resumed where it stopped. A pair is
 // certain when its traversal completed (exact contacts, sampled per contact region) or
