@@ -377,6 +377,13 @@ void FrameScheduler::refine(const FrameSettings& settings) {
   }
 }
 
+// Whether a time budget has no room left for one more cut pair's contacts.
+bool FrameScheduler::outOfTime(const FrameSettings& s) const {
+  if (std::isinf(s.budgetMicros)) return false;
+  const double used = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
+  return used + m_lateWriteMicros > s.budgetMicros;
+}
+
 // Writes a pair's contacts and measures the time it took.
 double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settings) {
   const Clock::time_point start = Clock::now();
@@ -396,8 +403,15 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
   double confidenceSum = 0.0;
   for (DeferredPair& pair : m_pairs) {
     if (!pair.written) {
-      writePair(pair, settings);
-      ++late;
+      if (outOfTime(settings)) {
+        // Writing a cut pair's contacts would overrun the step: it keeps last step's.
+        PairWrappers wrappers(pair);
+        pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
+        ++m_stats.lateKeptPairs;
+      } else {
+        writePair(pair, settings);
+        ++late;
+      }
     }
     m_stats.neededNodePairs += pair.meshMesh().needed();
     confidenceSum += pair.confidence;

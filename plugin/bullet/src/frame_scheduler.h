@@ -93,6 +93,7 @@ class FrameScheduler {
   std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
                       const FrameSettings& settings, bool resume);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
+  bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
   double microsLeft(const FrameSettings& settings) const;

@@ -85,6 +85,9 @@ struct FrameStats {
   std::uint32_t exactPairs = 0;     ///< decided exactly: traversal completed
   std::uint32_t qualityPairs = 0;   ///< stopped at the quality target (k_min above p_min)
   std::uint32_t cutPairs = 0;       ///< cut by the budget: plausible contacts where p >= pAccept
+  /// Of those, the ones a time budget left no time to write: they keep last step's contacts,
+  /// refreshed for the new poses.
+  std::uint32_t lateKeptPairs = 0;
   std::uint32_t queries = 0;        ///< pair queries run (a pair re-run counts again)
   std::uint64_t nodePairs = 0;      ///< node pairs evaluated, all queries of the step (the
                                     ///< other pairs' nodes and triangles included)
