@@ -150,14 +150,15 @@ std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
   return s.budgetNodePairs > m_stats.nodePairs ? s.budgetNodePairs - m_stats.nodePairs : 0;
 }
 
-double FrameScheduler::microsLeft(const FrameSettings& s) const {
+double FrameScheduler::microsLeft(const FrameSettings& s, bool holdBackWrites) const {
   if (std::isinf(s.budgetMicros)) return s.budgetMicros;
   const double used = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
   // The contact writing still to come is part of the step: its expected cost is held back.
   // A pair not queried yet will most likely be decided and written at once; one the budget
   // cut is written at the end, and costs more (more witnesses, its plausible contacts).
-  const double contacts = m_writeMicros * static_cast<double>(m_unqueried) +
-                          m_lateWriteMicros * static_cast<double>(m_undecided);
+  const double contacts = holdBackWrites ? m_writeMicros * static_cast<double>(m_unqueried) +
+                                               m_lateWriteMicros * static_cast<double>(m_undecided)
+                                         : 0.0;
   const double margin = std::max(m_margin, minMargin(s.budgetMicros));
   return std::max(0.0, s.budgetMicros - margin - contacts - used);
 }
@@ -252,10 +253,15 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
     // keeps its last contacts and goes first next step.
     for (DeferredPair& pair : m_wholes) {
       if (anchored(pair) != group) continue;
-      const double micros = microsLeft(settings);
+      // A pair with the world goes before the mesh-mesh pairs' contact writing (a cut pair
+      // that finds no time to write keeps its last contacts; a body that misses the floor
+      // is lost).
+      const double micros = microsLeft(settings, !group);
       const std::uint64_t among = group ? 1 : waiting;
-      runWhole(pair, share(settings, among),
-               std::isinf(micros) ? micros : micros / static_cast<double>(among), settings);
+      std::uint64_t units = nodePairsLeft(settings);
+      if (units != kUnlimited) units /= among;
+      runWhole(pair, units, std::isinf(micros) ? micros : micros / static_cast<double>(among),
+               settings);
       --waiting;
     }
     for (DeferredPair& pair : m_pairs) {
@@ -331,7 +337,9 @@ void FrameScheduler::keepSkipped() {
 void FrameScheduler::refine(const FrameSettings& settings) {
   // Whole pairs that did not fit their share: in turn, while what is left covers them.
   for (DeferredPair& pair : m_wholes) {
-    if (!pair.written) runWhole(pair, share(settings, 1), microsLeft(settings), settings);
+    if (!pair.written) {
+      runWhole(pair, nodePairsLeft(settings), microsLeft(settings, !anchored(pair)), settings);
+    }
   }
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {

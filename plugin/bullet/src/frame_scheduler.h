@@ -96,7 +96,9 @@ class FrameScheduler {
   bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
-  double microsLeft(const FrameSettings& settings) const;
+  /// Microseconds left of a time budget, less the margin and, with `holdBackWrites`, the
+  /// expected cost of the mesh-mesh contacts still to write.
+  double microsLeft(const FrameSettings& settings, bool holdBackWrites = true) const;
   void updateMargin(const FrameSettings& settings);
   std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting) const;
 
