@@ -41,8 +41,10 @@ TEST(ConcaveGrounds, TorusComesToRestOnAHeightfield) {
   // A flat 9 x 9 heightfield, 1 apart, heights 0 (the arrays outlive the world).
   std::vector<float> heights(81, 0.0f);
   World w;
-  auto field = std::make_unique<btHeightfieldTerrainShape>(9, 9, heights.data(), 1.0f, 0.0f,
-                                                           0.0f, 1, PHY_FLOAT, false);
+  // The float-data constructor: the legacy one reads PHY_FLOAT as btScalar, which is double
+  // in Bullet's double-precision build (and read past the end of these floats).
+  auto field = std::make_unique<btHeightfieldTerrainShape>(9, 9, heights.data(), btScalar(0),
+                                                           btScalar(0), 1, false);
   w.add(std::move(field), 0, btVector3(0, 0, 0));
   btRigidBody* body = dropTorus(w);
   EXPECT_GT(settle(w), 0u);  // scheduled under the step's budget
