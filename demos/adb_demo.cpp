@@ -27,6 +27,7 @@ struct Options {
   adb::demo::SceneSettings scene;
   int steps = 300;
   int every = 30;
+  int probeEvery = 0;  // measure body-body penetration from the geometry every N steps
   std::string out;
 };
 
@@ -51,7 +52,10 @@ struct Options {
                "(default k_min 0: never)\n"
                "  --p-accept      unresolved node pairs at or above this become plausible "
                "contacts (0.9)\n"
-               "  --no-soften     plausible contacts push as hard as exact ones\n");
+               "  --no-soften     plausible contacts push as hard as exact ones\n"
+               "  --probe-every N measure body-body penetration from the geometry every N "
+               "steps (untimed;\n"
+               "                  the same measure for every backend; default 0: off)\n");
   std::exit(code);
 }
 
@@ -100,6 +104,8 @@ Options parse(int argc, char** argv) {
         std::fprintf(stderr, "adb-demo: %s\n", e.what());
         std::exit(2);
       }
+    } else if (arg == "--probe-every") {
+      o.probeEvery = std::max(0, std::atoi(value.c_str()));
     } else if (arg == "--out") {
       o.out = value;
     } else if (arg == "--budget-us") {
@@ -138,7 +144,7 @@ void writeCsvHeader(std::ofstream& csv) {
   csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y,"
          "frame_us,contact_us,pairs,exact_pairs,quality_pairs,cut_pairs,node_pairs,exact_contacts,"
          "plausible_contacts,mean_confidence,worst_confidence,body_penetration,bin_penetration,"
-         "floor_penetration,floor_penetration_relative\n";
+         "floor_penetration,floor_penetration_relative,lost,probed_depth,probed_relative,probed_mean,needed_node_pairs\n";
 }
 
 void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
@@ -149,13 +155,22 @@ void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
       << ',' << f.nodePairs << ',' << f.exactContacts << ',' << f.plausibleContacts << ','
       << f.meanConfidence << ',' << f.worstConfidence << ',' << s.bodyPenetration << ','
       << s.binPenetration << ',' << s.floorPenetration << ',' << s.floorPenetrationRelative
-      << '\n';
+      << ',' << s.lost << ',';
+  if (s.probedDepth >= 0) {
+    csv << s.probedDepth << ',' << s.probedRelative << ',' << s.probedMean;
+  } else {
+    csv << ",,";
+  }
+  csv << ',' << f.neededNodePairs << '\n';
 }
 
 struct Totals {
   std::vector<double> stepSeconds, frameMicros;
   double worstPenetration = 0, lowest = 1e300, confidenceSum = 0, worstConfidence = 1;
   double worstBody = 0, worstBin = 0, worstFloor = 0, worstFloorRelative = 0;
+  double worstProbed = -1, worstProbedRelative = -1, probedMeanSum = 0;
+  int probes = 0;
+  int mostLost = 0;
   std::uint64_t pairs = 0, cutPairs = 0, exactContacts = 0, plausibleContacts = 0;
 
   void add(const adb::demo::StepStats& s) {
@@ -167,6 +182,13 @@ struct Totals {
     worstBin = std::max(worstBin, s.binPenetration);
     worstFloor = std::max(worstFloor, s.floorPenetration);
     worstFloorRelative = std::max(worstFloorRelative, s.floorPenetrationRelative);
+    worstProbed = std::max(worstProbed, s.probedDepth);
+    worstProbedRelative = std::max(worstProbedRelative, s.probedRelative);
+    mostLost = std::max(mostLost, s.lost);
+    if (s.probedMean >= 0) {
+      probedMeanSum += s.probedMean;
+      ++probes;
+    }
     confidenceSum += s.frame.meanConfidence;
     worstConfidence = std::min(worstConfidence, s.frame.worstConfidence);
     pairs += s.frame.pairs;
@@ -222,6 +244,7 @@ int main(int argc, char** argv) {
   adb::demo::StepStats last;
   for (int step = 1; step <= o.steps; ++step) {
     last = scene.step();
+    if (o.probeEvery > 0 && (step % o.probeEvery == 0 || step == o.steps)) scene.probe(last);
     totals.add(last);
     if (csv) writeCsvRow(csv, step, last);
     if (step % o.every == 0 || step == o.steps) {
@@ -257,6 +280,16 @@ int main(int argc, char** argv) {
               totals.worstBody, totals.worstBin, totals.worstFloor,
               totals.worstFloorRelative * 100, last.floorPenetration,
               last.floorPenetrationRelative * 100);
+  std::printf("\nbodies lost (centre out of the bin): %d at most, %d at the end\n",
+              totals.mostLost, last.lost);
+  if (totals.worstProbed >= 0) {
+    std::printf("body-body penetration from the geometry (every %d steps): max %.4f "
+                "(%.2f %% of a body's size), at the end %.4f (%.2f %%); each body's deepest, "
+                "mean over bodies and probes %.4f\n",
+                o.probeEvery, totals.worstProbed, totals.worstProbedRelative * 100,
+                last.probedDepth, last.probedRelative * 100,
+                totals.probedMeanSum / std::max(1, totals.probes));
+  }
   if (csv) std::printf("\nper-step figures: %s/steps.csv\n", o.out.c_str());
   // Below the floor (y = 0) by more than a body means one fell through: say so in the exit.
   return totals.lowest < -0.5 ? 1 : 0;

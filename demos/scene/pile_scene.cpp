@@ -8,8 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <cstdio>
+#include <cstdlib>
 
 #include "common/triangle_arrays.h"
+#include "scene/penetration_probe.h"
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
@@ -22,6 +25,8 @@ namespace {
 
 constexpr double kGravity = 9.81;
 constexpr double kFloorTop = 0.0;
+// The walls' inner faces are 2.5 from the centre: a body centre beyond them has left the bin.
+constexpr double kBinInside = 2.5;
 
 btVector3 toBt(const Vec3& v) {
   return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
@@ -82,10 +87,12 @@ struct PileScene::Impl {
   std::vector<std::unique_ptr<TriangleArrays>> indexed;  // what GImpact/BVH shapes read
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<std::shared_ptr<const MeshData>> kinds;  // the bodies' meshes, by kind
   std::vector<Vec3> localInertia;  // per dynamic body, unit mass
   std::vector<std::vector<Vec3>> usedVertices;         // per kind of body
   std::vector<const std::vector<Vec3>*> bodyVertices;  // per dynamic body, its kind's used ones
   std::vector<double> bodySize;               // per dynamic body, its bounding-box diagonal
+  std::vector<const AdbTree*> bodyTree;       // per dynamic body, its kind's tree (the probe)
 
   ~Impl() {
     for (auto& b : bodies) world->removeRigidBody(b.get());
@@ -159,7 +166,7 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
     first = false;
   }
 
-  std::vector<std::shared_ptr<const MeshData>> kinds;
+  std::vector<std::shared_ptr<const MeshData>>& kinds = s.kinds;
   if (settings.meshes.empty()) {
     for (TriangleMesh& mesh : bodyMeshes(settings.trianglesPerBody)) {
       kinds.push_back(MeshData::build(std::move(mesh)));
@@ -204,6 +211,7 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
     s.localInertia.push_back(inertia);
     s.bodyVertices.push_back(&s.usedVertices[static_cast<std::size_t>(kind)]);
     s.bodySize.push_back(kinds[kind]->mesh.bounds().extent().norm());
+    s.bodyTree.push_back(&kinds[kind]->tree);
     m_triangles += kinds[kind]->mesh.triangleCount();
   }
 }
@@ -244,6 +252,12 @@ StepStats PileScene::step() {
     st.energy += kinetic + kGravity * (y - kFloorTop);
     st.atRest += v.length() < 0.05 && b->getAngularVelocity().length() < 0.05 ? 1 : 0;
     st.lowestY = std::min(st.lowestY, y);
+    const btVector3& c = b->getWorldTransform().getOrigin();
+    // A body whose centre is a quarter of its size below the floor's top is going through
+    // (a flat torus resting 0.1 into the floor has its centre at its top).
+    const bool inBin = c.y() > kFloorTop - 0.25 * s.bodySize[i] &&
+                       std::abs(c.x()) < kBinInside && std::abs(c.z()) < kBinInside;
+    st.lost += inBin ? 0 : 1;
     // The lowest vertex: world y = row 1 of the basis . vertex + origin y. Bodies above the
     // floor by more than their size cannot reach it.
     if (y - kFloorTop < s.bodySize[i]) {
@@ -257,6 +271,30 @@ StepStats PileScene::step() {
     }
   }
   return st;
+}
+
+void PileScene::probe(StepStats& stats) const {
+  const Impl& s = *m_impl;
+  std::vector<ProbeBody> bodies;
+  bodies.reserve(m_dynamic.size());
+  for (std::size_t i = 0; i < m_dynamic.size(); ++i) {
+    const btTransform& t = m_dynamic[i]->getWorldTransform();
+    Pose pose;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) pose.rotation(r, c) = t.getBasis()[r][c];
+      pose.translation[r] = t.getOrigin()[r];
+    }
+    bodies.push_back(ProbeBody{s.bodyTree[i], s.bodyVertices[i], pose});
+  }
+  const PenetrationReport report = measurePenetration(bodies);
+  stats.probedDepth = report.depth;
+  stats.probedRelative = report.relative;
+  stats.probedMean = report.meanDepth;
+  if (std::getenv("ADB_PROBE_DEBUG")) {
+    std::fprintf(stderr, "deepest: body %zu (kind %zu) into body %zu (kind %zu): %g\n",
+                 report.inside, report.inside % s.kinds.size(), report.penetrated,
+                 report.penetrated % s.kinds.size(), report.depth);
+  }
 }
 
 }  // namespace adb::demo

@@ -53,6 +53,13 @@ struct StepStats {
   double energy = 0;          ///< kinetic + potential (g = 9.81, height above the bin floor)
   int atRest = 0;             ///< bodies slower than 0.05 m/s and 0.05 rad/s
   double lowestY = 0;         ///< lowest body centre: below the floor means fell through
+  int lost = 0;  ///< bodies whose centre left the bin (a quarter of their size below the floor, past a wall)
+  /// Body-body penetration from the geometry (penetration_probe.h), the same measure for
+  /// every backend: deepest vertex inside another body, and that over the body's size.
+  /// Negative when the step was not probed (PileScene::probe).
+  double probedDepth = -1;
+  double probedRelative = -1;
+  double probedMean = -1;  ///< each body's deepest penetration, averaged over the bodies
   FrameStats frame;           ///< adb backend: what the step did with its mesh-mesh pairs
 };
 
@@ -65,6 +72,9 @@ class PileScene {
 
   /// Advances one fixed step of 1/60 s and measures it.
   StepStats step();
+  /// Measures body-body penetration from the geometry into `stats` (slow: not part of the
+  /// step's time).
+  void probe(StepStats& stats) const;
   int bodyCount() const { return static_cast<int>(m_dynamic.size()); }
   std::size_t triangleCount() const { return m_triangles; }
 
