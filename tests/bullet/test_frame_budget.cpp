@@ -309,6 +309,46 @@ TEST(FrameBudget, NodePairBudgetGivesBitIdenticalTrajectories) {
   EXPECT_EQ(budgetedRun(1500), budgetedRun(1500));
 }
 
+// The bodies' hash after every step of the pile under `f`, and the pairs the budget cut.
+std::vector<std::uint64_t> trajectory(const FrameSettings& f, std::uint32_t& cut,
+                                      std::uint64_t& nodePairs) {
+  World w(test::Dispatch::Adb, f);
+  addPile(w);
+  std::vector<std::uint64_t> hashes;
+  cut = 0;
+  nodePairs = 0;
+  for (int step = 0; step < 90; ++step) {
+    w.step();
+    cut += w.adbDispatcher->lastFrameStats().cutPairs;
+    nodePairs += w.adbDispatcher->lastFrameStats().nodePairs;
+    hashes.push_back(test::hashBodies(w.bodies));
+  }
+  return hashes;
+}
+
+TEST(FrameBudget, ABudgetNeverReachedGivesTheSameSimulationAsNoBudget) {
+  // A budget large enough for every pair must not change a thing: the same contacts, the
+  // same trajectories to the bit, step by step. It used to: any budget switched the
+  // descent to deepest-overlap-first, which samples other triangle pairs.
+  std::uint32_t cut = 0;
+  std::uint64_t work = 0;
+  const std::vector<std::uint64_t> free = trajectory(FrameSettings{}, cut, work);
+  ASSERT_GT(work, 10000u) << "the pile must collide for this test to mean anything";
+  FrameSettings byWork;
+  byWork.budgetNodePairs = 1'000'000'000;
+  FrameSettings byTime;
+  byTime.budgetMicros = 1e9;
+  for (const FrameSettings& f : {byWork, byTime}) {
+    std::uint64_t budgetedWork = 0;
+    const std::vector<std::uint64_t> budgeted = trajectory(f, cut, budgetedWork);
+    EXPECT_EQ(cut, 0u) << "this budget was reached";
+    EXPECT_EQ(budgetedWork, work);
+    for (std::size_t step = 0; step < free.size(); ++step) {
+      ASSERT_EQ(budgeted[step], free[step]) << "trajectories part at step " << step + 1;
+    }
+  }
+}
+
 // Wall-clock and this thread's CPU time, in microseconds.
 double wallMicros() {
   return std::chrono::duration<double, std::micro>(

@@ -151,6 +151,41 @@ TEST_F(OverlappingTori, ATraversalRunInStepsEqualsAnUninterruptedQuery) {
   }
 }
 
+// The witnesses of a sampled exact query, in the order found.
+std::vector<TrianglePair> sampledHits(const AdbTree& tree, const PosePair& p,
+                                      ExactDescent descent, std::uint64_t firstStep) {
+  QuerySettings s = allHits();
+  s.hitsPerRegion = 2;
+  s.regionDepth = 6;
+  s.descent = descent;
+  Traversal t(tree, p.a, tree, p.b, s);
+  t.step(StepBudget{firstStep});
+  while (!t.done()) t.step();
+  std::vector<TrianglePair> out;
+  for (const Witness& w : t.witnesses()) out.emplace_back(w.triangleA, w.triangleB);
+  return out;
+}
+
+TEST_F(OverlappingTori, TheDescentOrderIsASettingNotASideEffectOfTheBudget) {
+  constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+  int orderMatters = 0;
+  for (const PosePair& p : poses) {
+    const std::vector<TrianglePair> treeOrder = sampledHits(tree, p, ExactDescent::TreeOrder,
+                                                            kUnlimited);
+    // TreeOrder: a budget (here one that cuts the first step) changes nothing.
+    EXPECT_EQ(sampledHits(tree, p, ExactDescent::TreeOrder, 40), treeOrder);
+    // Auto: the trees' order without a budget, deepest first with one.
+    EXPECT_EQ(sampledHits(tree, p, ExactDescent::Auto, kUnlimited), treeOrder);
+    const std::vector<TrianglePair> deepest =
+        sampledHits(tree, p, ExactDescent::DeepestFirst, kUnlimited);
+    EXPECT_EQ(sampledHits(tree, p, ExactDescent::Auto, 40), deepest);
+    orderMatters += deepest != treeOrder ? 1 : 0;
+  }
+  // Sampling keeps the first hits of each region: the order must show in them somewhere,
+  // or this test could not tell the settings apart.
+  EXPECT_GT(orderMatters, 0);
+}
+
 // Found by fuzzing: steps of 1 to 3 node pairs (less than one expansion) used to make no
 // progress, so a caller looping until done livelocked. Every step with a non-zero budget
 // now takes at least one pair off the frontier, and every pair on it was counted once when

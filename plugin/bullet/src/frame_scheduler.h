@@ -90,8 +90,9 @@ class FrameScheduler {
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
+  /// `starved`: granted less than it wants (a new query then descends deepest first).
   std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
-                      const FrameSettings& settings, bool resume);
+                      const FrameSettings& settings, bool resume, bool starved = false);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
   bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);

@@ -30,6 +30,14 @@ void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                          btManifoldResult* result) {
   if (!acceptPoses(body0, body1)) return;
   if (m_scheduler && m_scheduler->collecting()) {
+    // The manifold is made now, in Bullet's dispatch order, not when the scheduler first
+    // writes contacts: the solver visits manifolds in the order they were made, and a budget
+    // that reorders the writing (a pair cut, then completed by a refinement) must not
+    // reorder the solver, or a budget that is never reached would change the simulation.
+    if (!m_manifold) {
+      m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
+                                                 body1->getCollisionObject());
+    }
     m_scheduler->defer(this, body0, body1);
     return;
   }

@@ -47,6 +47,11 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   const StepWork& lastStep() const { return m_traversal.lastStep(); }
   /// Writes the contacts of the last query into the pair's manifold.
   ContactCount writeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
+  /// Whether the budget cut the pair's last query (until this step's first query: last
+  /// step's).
+  bool cut() const {
+    return m_lastStop != StopReason::Completed && m_lastStop != StopReason::QualityReached;
+  }
   /// Node pairs the last query that finished needed: the next step's first grant.
   std::uint64_t needed() const { return m_needed; }
   /// The node pairs the last query left unresolved (empty when it completed).

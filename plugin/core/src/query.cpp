@@ -144,7 +144,8 @@ struct Traversal::Impl {
   detail::TreeConstants a{nullptr, 0}, b{nullptr, 0};
   detail::RelativeFrame frame;
   QuerySettings settings;
-  bool budgeted = false;  // a budget may cut the query: exact mode then goes deepest first
+  bool budgeted = false;  // a budget may cut the query (ExactDescent::Auto: deepest first)
+  bool deepestFirst = false;  // exact mode descends the deepest overlap first
 
   // --- state kept between steps ------------------------------------------------------------
   std::vector<Entry> heap;  // ADB: max-heap by p; exact: depth-first stack
@@ -182,7 +183,7 @@ struct Traversal::Impl {
     result = QueryResult{};
     started = finished = exactHit = false;
     prunedMass = prunedExpected = 0.0;
-    budgeted = false;
+    budgeted = deepestFirst = false;
     work = StepWork{};
   }
 
@@ -192,6 +193,8 @@ struct Traversal::Impl {
     budget = stepBudget;
     if (std::isnan(budget.micros)) budget.micros = 0.0;  // no time is the safe reading
     budgeted = budgeted || budget.nodePairs != kUnlimited || std::isfinite(budget.micros);
+    deepestFirst = settings.descent == ExactDescent::DeepestFirst ||
+                   (settings.descent == ExactDescent::Auto && budgeted);
     stepStart = Clock::now();
     timed = std::isfinite(budget.micros);
     interval = timed ? clockInterval(budget.micros) : kMaxClockInterval;
@@ -399,12 +402,12 @@ struct Traversal::Impl {
     finish(exactHit, 1.0, StopReason::Completed);
   }
 
-  // Exact mode's expansion. Under a budget the overlapping children go on the stack shallowest
-  // first, so that the deepest overlap is explored first: a budget that cuts the descent has
-  // then seen the deepest contacts, the ones that keep bodies apart. A descent that cannot be
-  // cut keeps the trees' order, which samples the same triangle pairs step after step (deepest
-  // first, near-equal depths swap with every small motion, and the contacts of a resting
-  // stack jumped: its top boxes drifted up to 40 % further).
+  // Exact mode's expansion. Deepest first (ExactDescent), the overlapping children go on the
+  // stack shallowest first, so that the deepest overlap is explored first: a budget that cuts
+  // the descent has then seen the deepest contacts, the ones that keep bodies apart. Otherwise
+  // the trees' order, which samples the same triangle pairs step after step (deepest first,
+  // near-equal depths swap with every small motion, and the contacts of a resting stack
+  // jumped: its top boxes drifted up to 40 % further).
   void pushOverlappingChildren(const Entry& e) {
     const Expansion x = expand(e);
     detail::ChildPairs pairs = pairsOf(x);
@@ -414,7 +417,8 @@ struct Traversal::Impl {
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
         ++work.nodePairs;
-        const double d = budgeted ? pairs.overlapDepth(i, j) : (pairs.overlap(i, j) ? 0.0 : -1.0);
+        const double d =
+            deepestFirst ? pairs.overlapDepth(i, j) : (pairs.overlap(i, j) ? 0.0 : -1.0);
         if (d < 0.0) continue;
         int k = count++;
         for (; k > 0 && depth[k - 1] > static_cast<float>(d); --k) {

@@ -39,6 +39,19 @@ enum class StopReason {
 
 const char* toString(StopReason r);
 
+/// Exact mode: the order in which the overlapping children of a node pair are descended.
+enum class ExactDescent {
+  /// Deepest box overlap first when the query has a budget, the trees' order otherwise.
+  Auto,
+  /// The trees' order, budget or not: a budget that never cuts the query changes nothing,
+  /// and a resting contact samples the same triangle pairs step after step.
+  TreeOrder,
+  /// The deepest box overlap (the smallest overlap over the six face axes) first: a budget
+  /// that cuts the descent has then seen the deepest contacts, the ones that keep bodies
+  /// apart.
+  DeepestFirst,
+};
+
 struct QuerySettings {
   QueryMode mode = QueryMode::Adb;
   /// A node pair with probability above pMin is a collision pair (paper: 0.5, 0.9, 0.99).
@@ -73,6 +86,8 @@ struct QuerySettings {
   /// region already holds a hit.
   std::uint32_t hitsPerRegion = 0;
   int regionDepth = 8;
+  /// Exact mode's descent order (ADB mode follows its probabilities).
+  ExactDescent descent = ExactDescent::Auto;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
