@@ -186,6 +186,37 @@ TEST_F(OverlappingTori, TheDescentOrderIsASettingNotASideEffectOfTheBudget) {
   EXPECT_GT(orderMatters, 0);
 }
 
+TEST_F(OverlappingTori, StoppingWhenTheWitnessesAreFullKeepsTheSameWitnesses) {
+  int stoppedEarly = 0;
+  for (const PosePair& p : poses) {
+    QuerySettings s = allHits();
+    s.hitsPerRegion = 4;
+    s.maxWitnesses = 16;
+    const QueryResult whole = collide(tree, p.a, tree, p.b, s, scratch);
+    const std::vector<Witness> wholeHits = scratch.witnesses();
+    s.stopWhenWitnessesFull = true;
+    const QueryResult early = collide(tree, p.a, tree, p.b, s, scratch);
+    EXPECT_EQ(early.collides, whole.collides);
+    ASSERT_EQ(scratch.witnesses().size(), wholeHits.size());
+    for (std::size_t i = 0; i < wholeHits.size(); ++i) {
+      EXPECT_EQ(scratch.witnesses()[i].triangleA, wholeHits[i].triangleA);
+      EXPECT_EQ(scratch.witnesses()[i].triangleB, wholeHits[i].triangleB);
+    }
+    if (wholeHits.size() < s.maxWitnesses) {
+      // Never full: the whole query, to the last node pair.
+      EXPECT_EQ(early.stop, StopReason::Completed);
+      EXPECT_EQ(early.nodePairs, whole.nodePairs);
+    } else {
+      EXPECT_EQ(early.stop, StopReason::WitnessesFull);
+      EXPECT_EQ(early.confidence, 1.0);
+      EXPECT_EQ(early.witnessesDropped, 0u);
+      EXPECT_LE(early.nodePairs, whole.nodePairs);
+      stoppedEarly += early.nodePairs < whole.nodePairs ? 1 : 0;
+    }
+  }
+  EXPECT_GT(stoppedEarly, 0) << "no pose filled the witnesses early: the test shows nothing";
+}
+
 // Found by fuzzing: steps of 1 to 3 node pairs (less than one expansion) used to make no
 // progress, so a caller looping until done livelocked. Every step with a non-zero budget
 // now takes at least one pair off the frontier, and every pair on it was counted once when

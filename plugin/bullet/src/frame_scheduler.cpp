@@ -229,6 +229,7 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   m_stats.nodePairs += work.nodePairs;
   switch (r.stop) {
     case StopReason::Completed:
+    case StopReason::WitnessesFull:  // its contacts are what a completed query would give
       pair.confidence = 1.0;
       break;
     case StopReason::QualityReached:
@@ -433,7 +434,7 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
     m_stats.neededNodePairs += pair.meshMesh().needed();
     confidenceSum += pair.confidence;
     m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
-    if (pair.stop == StopReason::Completed) {
+    if (pair.stop == StopReason::Completed || pair.stop == StopReason::WitnessesFull) {
       ++m_stats.exactPairs;
     } else if (pair.stop == StopReason::QualityReached) {
       ++m_stats.qualityPairs;

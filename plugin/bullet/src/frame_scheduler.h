@@ -41,10 +41,8 @@ struct DeferredPair {
   StopReason stop = StopReason::Completed;
   bool written = false;        // its contacts are in its manifold
 
-  /// Completed or stopped on quality: nothing left to refine.
-  bool decided() const {
-    return stop == StopReason::Completed || stop == StopReason::QualityReached;
-  }
+  /// Completed, stopped on quality or with its contacts found: nothing left to refine.
+  bool decided() const { return !isBudgetStop(stop); }
   /// The mesh-mesh algorithm of a refinable pair.
   MeshMeshAlgorithm& meshMesh() const;
 };

@@ -35,6 +35,9 @@ QuerySettings forContacts(QuerySettings s) {
   s.maxWitnesses = kMaxContactPairs;
   s.hitsPerRegion = kHitsPerRegion;
   s.regionDepth = kRegionDepth;
+  // Contacts come from the witnesses: once they are full, every further hit would be
+  // dropped, and the rest of the descent would change nothing but its own cost.
+  s.stopWhenWitnessesFull = true;
   return s;
 }
 
@@ -76,7 +79,7 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
   const QueryResult& r = m_traversal.step(budget);
   m_lastStop = r.stop;
   // The result's counters cover every step of this query: what the pair used this frame.
-  if (r.stop == StopReason::Completed || r.stop == StopReason::QualityReached) {
+  if (!isBudgetStop(r.stop)) {
     m_needed = r.nodePairs;
   } else {
     // Cut: it needs more than it had. Without this a pair first met while barely touching
@@ -122,7 +125,7 @@ ContactCount MeshMeshAlgorithm::addContacts(const btCollisionObjectWrapper* body
   const Vec3 hint = detail::separationHint(manifold, boxCentre(body0), boxCentre(body1));
   ContactCount count;
   count.exact = detail::addExactContacts(posed, m_traversal.witnesses(), hint, result);
-  if (m_lastStop != StopReason::Completed) {
+  if (isBudgetStop(m_lastStop) || m_lastStop == StopReason::QualityReached) {
     count.plausible = detail::addPlausibleContacts(posed, m_traversal.openPairs(), settings,
                                                    hint, result, *manifold);
   }

@@ -49,9 +49,7 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   ContactCount writeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
   /// Whether the budget cut the pair's last query (until this step's first query: last
   /// step's).
-  bool cut() const {
-    return m_lastStop != StopReason::Completed && m_lastStop != StopReason::QualityReached;
-  }
+  bool cut() const { return isBudgetStop(m_lastStop); }
   /// Node pairs the last query that finished needed: the next step's first grant.
   std::uint64_t needed() const { return m_needed; }
   /// The node pairs the last query left unresolved (empty when it completed).

@@ -84,9 +84,6 @@ bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& h
   return (loX.array() > hiY.array() + gap).any() || (loY.array() > hiX.array() + gap).any();
 }
 
-bool isBudgetStop(StopReason r) {
-  return r == StopReason::TimeBudget || r == StopReason::WorkBudget;
-}
 
 void validatePose(const Pose& p, const char* which) {
   const PoseDefect defect = poseDefect(p);
@@ -157,6 +154,7 @@ struct Traversal::Impl {
   double prunedMass = 0.0;    // sum of min(1, E[X]) over the pairs pruned for p = 0
   double prunedExpected = 0.0;  // sum of E[X] over them
   bool exactHit = false;
+  bool witnessesFull = false;  // stopWhenWitnessesFull: the last hit filled the witnesses
 
   // --- the current step ----------------------------------------------------------------------
   StepWork work;
@@ -181,7 +179,7 @@ struct Traversal::Impl {
     witnesses.clear();
     regionHits.clear();
     result = QueryResult{};
-    started = finished = exactHit = false;
+    started = finished = exactHit = witnessesFull = false;
     prunedMass = prunedExpected = 0.0;
     budgeted = deepestFirst = false;
     work = StepWork{};
@@ -325,6 +323,10 @@ struct Traversal::Impl {
         w.probability = 1.0f;
         addWitness(w);
         if (settings.stopAtFirstHit) return true;
+        if (settings.stopWhenWitnessesFull && witnesses.size() >= settings.maxWitnesses) {
+          witnessesFull = true;
+          return true;
+        }
         if (region != kNoRegion && ++regionHits[region] >= settings.hitsPerRegion) {
           return true;
         }
@@ -389,9 +391,9 @@ struct Traversal::Impl {
       if (bothLeaves(e)) {
         if (testLeaves(e.a, e.b, e.region)) {
           exactHit = true;
-          if (settings.stopAtFirstHit) {
+          if (settings.stopAtFirstHit || witnessesFull) {
             heap.clear();  // decided: nothing is left open
-            finish(true, 1.0, StopReason::ExactHit);
+            finish(true, 1.0, witnessesFull ? StopReason::WitnessesFull : StopReason::ExactHit);
             return;
           }
         }
@@ -482,8 +484,8 @@ struct Traversal::Impl {
     if (bothLeaves(e)) {
       if (testLeaves(e.a, e.b, e.region)) {
         exactHit = true;
-        if (settings.stopAtFirstHit) {  // (no region fills: hits are not counted then)
-          finish(true, 1.0, StopReason::ExactHit);
+        if (settings.stopAtFirstHit || witnessesFull) {  // (stopAtFirstHit: no region fills)
+          finish(true, 1.0, witnessesFull ? StopReason::WitnessesFull : StopReason::ExactHit);
           return true;
         }
       }
@@ -639,11 +641,16 @@ std::size_t Traversal::capacityBytes() const {
          m_impl->regionHits.capacity() * sizeof(std::uint32_t);
 }
 
+bool isBudgetStop(StopReason r) {
+  return r == StopReason::TimeBudget || r == StopReason::WorkBudget;
+}
+
 const char* toString(StopReason r) {
   switch (r) {
     case StopReason::Completed: return "completed";
     case StopReason::QualityReached: return "quality reached";
     case StopReason::ExactHit: return "exact hit";
+    case StopReason::WitnessesFull: return "witnesses full";
     case StopReason::TimeBudget: return "time budget";
     case StopReason::WorkBudget: return "work budget";
   }

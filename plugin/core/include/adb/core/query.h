@@ -33,11 +33,16 @@ enum class StopReason {
   Completed,       ///< the traversal ran out of pairs: the answer is final under the mode
   QualityReached,  ///< ADB: k_min collision pairs found (paper Fig. 3)
   ExactHit,        ///< a triangle pair intersects (with stopAtFirstHit): certain
+  /// maxWitnesses intersecting triangle pairs are held (with stopWhenWitnessesFull): a
+  /// collision, certain, and every further hit would be dropped.
+  WitnessesFull,
   TimeBudget,      ///< the wall-clock budget ran out
   WorkBudget,      ///< the node-pair budget ran out
 };
 
 const char* toString(StopReason r);
+/// Whether a query stopped on a budget (cut: it may be resumed), not on an answer.
+bool isBudgetStop(StopReason r);
 
 /// Exact mode: the order in which the overlapping children of a node pair are descended.
 enum class ExactDescent {
@@ -68,6 +73,11 @@ struct QuerySettings {
   bool stopAtFirstHit = true;
   /// Witnesses kept at most; more are counted in QueryResult::witnessesDropped.
   std::uint32_t maxWitnesses = 64;
+  /// Stop once maxWitnesses intersecting triangle pairs are held (StopReason::WitnessesFull)
+  /// instead of going on to count hits that would be dropped. For contact generation, whose
+  /// contacts come from the witnesses: the same witnesses as the whole query, in the same
+  /// order, for less work. `collides` is certain either way.
+  bool stopWhenWitnessesFull = false;
   /// ADB mode: drop pairs whose boxes overlap but whose probability is 0 (the paper's rule,
   /// and its main source of error). Off, they are queued last instead, so a traversal that
   /// completes has tested every overlapping triangle pair (an exact answer, visited most
