@@ -33,11 +33,11 @@ enum class StopReason {
   Completed,       ///< the traversal ran out of pairs: the answer is final under the mode
   QualityReached,  ///< ADB: k_min collision pairs found (paper Fig. 3)
   ExactHit,        ///< a triangle pair intersects (with stopAtFirstHit): certain
+  TimeBudget,      ///< the wall-clock budget ran out
+  WorkBudget,      ///< the node-pair budget ran out
   /// maxWitnesses intersecting triangle pairs are held (with stopWhenWitnessesFull): a
   /// collision, certain, and every further hit would be dropped.
   WitnessesFull,
-  TimeBudget,      ///< the wall-clock budget ran out
-  WorkBudget,      ///< the node-pair budget ran out
 };
 
 const char* toString(StopReason r);
