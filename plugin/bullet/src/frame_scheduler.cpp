@@ -227,16 +227,17 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   pair.stop = r.stop;
   ++m_stats.queries;
   m_stats.nodePairs += work.nodePairs;
+  pair.confidence = r.confidence;  // 1 when decided exactly or after a hit
   switch (r.stop) {
     case StopReason::Completed:
     case StopReason::WitnessesFull:  // its contacts are what a completed query would give
-      pair.confidence = 1.0;
+      pair.completeness = 1.0;
       break;
     case StopReason::QualityReached:
-      pair.confidence = r.confidence;
+      pair.completeness = r.confidence;
       break;
     default:
-      pair.confidence = 1.0 - doubtOf(pair.meshMesh().openPairs());
+      pair.completeness = 1.0 - doubtOf(pair.meshMesh().openPairs());
       break;
   }
   // Leaf pairs cost triangle tests, not node pairs, and some popped pairs cost neither: all
@@ -341,7 +342,7 @@ void FrameScheduler::keepSkipped() {
   }
 }
 
-// While budget is left, the least certain pair gets as much again as it had: resumed depth
+// While budget is left, the least complete pair gets as much again as it had: resumed depth
 // first, re-run best first (ties: pairs with a static body, then the earlier pair, so that
 // node-pair budgets stay reproducible).
 void FrameScheduler::refine(const FrameSettings& settings) {
@@ -355,10 +356,10 @@ void FrameScheduler::refine(const FrameSettings& settings) {
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (!m_pairs[i].decided()) m_order.push_back(i);
   }
-  // Least certain first; among equally certain pairs those with a static body (the ones
+  // Least complete first; among equally complete pairs those with a static body (the ones
   // that lose bodies through the floor), then the earlier.
   const auto moreCertain = [this](std::uint32_t x, std::uint32_t y) {
-    const double cx = m_pairs[x].confidence, cy = m_pairs[y].confidence;
+    const double cx = m_pairs[x].completeness, cy = m_pairs[y].completeness;
     if (cx != cy) return cx > cy;
     const bool ax = anchored(m_pairs[x]), ay = anchored(m_pairs[y]);
     return ax != ay ? ay : x > y;
@@ -418,7 +419,7 @@ double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settin
 void FrameScheduler::writeContacts(const FrameSettings& settings) {
   const double early = m_stats.contactMicros;
   std::uint32_t late = 0;
-  double confidenceSum = 0.0;
+  double confidenceSum = 0.0, completenessSum = 0.0;
   for (DeferredPair& pair : m_pairs) {
     if (!pair.written) {
       if (outOfTime(settings)) {
@@ -434,6 +435,8 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
     m_stats.neededNodePairs += pair.meshMesh().needed();
     confidenceSum += pair.confidence;
     m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
+    completenessSum += pair.completeness;
+    m_stats.worstCompleteness = std::min(m_stats.worstCompleteness, pair.completeness);
     if (pair.stop == StopReason::Completed || pair.stop == StopReason::WitnessesFull) {
       ++m_stats.exactPairs;
     } else if (pair.stop == StopReason::QualityReached) {
@@ -442,8 +445,10 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
       ++m_stats.cutPairs;
     }
   }
-  if (!m_pairs.empty()) confidenceSum /= static_cast<double>(m_pairs.size());
-  m_stats.meanConfidence = m_pairs.empty() ? 1.0 : confidenceSum;
+  if (!m_pairs.empty()) {
+    m_stats.meanConfidence = confidenceSum / static_cast<double>(m_pairs.size());
+    m_stats.meanCompleteness = completenessSum / static_cast<double>(m_pairs.size());
+  }
   const std::uint32_t earlyPairs = static_cast<std::uint32_t>(m_pairs.size()) - late;
   if (earlyPairs > 0) {
     const double perPair = early / static_cast<double>(earlyPairs);

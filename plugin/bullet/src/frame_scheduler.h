@@ -38,6 +38,7 @@ struct DeferredPair {
   // Scheduling state of this step.
   std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
   double confidence = 0.0;     // see FrameStats::meanConfidence
+  double completeness = 0.0;   // see FrameStats::meanCompleteness: the refinement's order
   StopReason stop = StopReason::Completed;
   bool written = false;        // its contacts are in its manifold
 

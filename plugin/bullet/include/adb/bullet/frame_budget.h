@@ -9,7 +9,7 @@
 // for the new poses) and goes first next step, and one expected to cost more than the whole
 // budget runs every third step regardless (its estimate is only re-measured by running). Each mesh-mesh pair is given what it needed
 // last step, at most an even share of what is left; then, while budget is left, the pair
-// whose contacts are least certain gets as much again, resumed where it stopped. A pair is
+// whose contacts are least complete gets as much again, resumed where it stopped. A pair is
 // certain when its traversal completed (exact contacts, sampled per contact region) or
 // reached the quality target (kMin node pairs above pMin, which needs the paper's
 // best-first traversal; otherwise pairs run depth first). Pairs the budget cut get plausible
@@ -96,11 +96,20 @@ struct FrameStats {
   double micros = 0.0;              ///< wall clock of the step's pair work, contacts included
   double contactMicros = 0.0;       ///< of which writing contacts (decided pairs at once, cut
                                     ///< ones after the queries)
-  /// Per pair: 1 when decided exactly; the quality answer's confidence when stopped on
-  /// quality; otherwise 1 - min(1, sum of Pr[X >= 1] over its unresolved node pairs), the
-  /// chance that no intersecting triangle pair is left unseen.
+  /// Per pair, the probability that its collision answer (touching or not) is right: 1 when
+  /// decided exactly or when a triangle pair was found to intersect; otherwise the
+  /// traversal's fitted estimate (adb::QueryResult::confidence, calibrated:
+  /// docs/probability-model.md). Low where a budget cut a pair before it found out whether
+  /// its bodies touch.
   double meanConfidence = 1.0;
   double worstConfidence = 1.0;
+  /// Per pair, how complete its contacts are: 1 when decided exactly; the quality answer's
+  /// confidence when stopped on quality; otherwise 1 - min(1, sum of Pr[X >= 1] over its
+  /// unresolved node pairs), a lower bound on the chance that no intersecting triangle pair
+  /// is left unseen. Near 0 for a cut pair deep in contact (certainly touching, with more
+  /// contacts unseen): the refinement goes to the least complete pair first.
+  double meanCompleteness = 1.0;
+  double worstCompleteness = 1.0;
 };
 
 }  // namespace adb
