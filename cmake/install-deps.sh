@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev            # core
   libbullet-dev            # Bullet 3.24, single and double precision (bullet-float64.pc)
+  libbullet-extras-dev     # Bullet's HACD: adb-demo's convex-decomposition peer
   libassimp-dev            # mesh files
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev

@@ -1,9 +1,9 @@
 // adb-demo: runs the pile scene headless (generated tori, gears and torus knots, or copies of
-// mesh files, dropped into a bin) with adb's MeshShape or with Bullet's GImpact on the same
-// meshes, prints a line every N steps and a final table, and writes the per-step figures as
-// CSV with --out.
+// mesh files, dropped into a bin) with adb's MeshShape, with Bullet's GImpact, or with a convex
+// decomposition (Bullet's HACD) of the same meshes, prints a line every N steps and a final
+// table, and writes the per-step figures as CSV with --out.
 //
-//   build/bin/adb-demo [--backend adb|gimpact] [--bodies N] [--triangles N] [--steps N]
+//   build/bin/adb-demo [--backend adb|gimpact|convex] [--bodies N] [--triangles N] [--steps N]
 //                      [--every N] [--seed S] [--out DIR] [--floor mesh|box|plane]
 //                      [--mesh FILE]...
 //                      [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K]
@@ -33,14 +33,18 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::fprintf(code ? stderr : stdout,
-               "usage: adb-demo [--backend adb|gimpact] [--bodies N] [--triangles N] "
+               "usage: adb-demo [--backend adb|gimpact|convex] [--bodies N] [--triangles N] "
                "[--steps N] [--every N] [--seed S] [--out DIR]\n"
                "                [--floor mesh|box|plane] [--mesh FILE]...\n"
                "                [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K] "
                "[--p-accept P] [--no-soften]\n"
+               "  --backend       adb's MeshShape (default), Bullet's GImpact, or each mesh "
+               "decomposed into\n"
+               "                  convex hulls by Bullet's HACD (btCompoundShape of "
+               "btConvexHullShape)\n"
                "  --floor         the bin: box meshes (default), btBoxShape floor and walls, or a "
                "btStaticPlaneShape\n"
-               "                  floor between btBoxShape walls; the same for both backends\n"
+               "                  floor between btBoxShape walls; the same for every backend\n"
                "  --mesh          bodies are copies of this mesh file (any format assimp reads), "
                "scaled to 0.8\n"
                "                  across; repeat to cycle through several (default: generated "
@@ -81,8 +85,10 @@ Options parse(int argc, char** argv) {
     }
     if (i + 1 >= argc) usage(2);
     const std::string value = argv[++i];
-    if (arg == "--backend" && (value == "adb" || value == "gimpact")) {
-      o.scene.backend = value == "adb" ? adb::demo::Backend::Adb : adb::demo::Backend::GImpact;
+    if (arg == "--backend" && (value == "adb" || value == "gimpact" || value == "convex")) {
+      o.scene.backend = value == "adb"       ? adb::demo::Backend::Adb
+                        : value == "gimpact" ? adb::demo::Backend::GImpact
+                                             : adb::demo::Backend::Convex;
     } else if (arg == "--bodies") {
       o.scene.bodies = std::max(1, std::atoi(value.c_str()));
     } else if (arg == "--triangles") {
@@ -210,7 +216,9 @@ double mean(const std::vector<double>& v) {
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   const bool adbBackend = o.scene.backend == adb::demo::Backend::Adb;
-  const char* backend = adbBackend ? "adb" : "GImpact";
+  const char* backend = adbBackend                                        ? "adb"
+                        : o.scene.backend == adb::demo::Backend::GImpact ? "GImpact"
+                                                                         : "convex (HACD)";
   std::unique_ptr<adb::demo::PileScene> made;
   try {
     made = std::make_unique<adb::demo::PileScene>(o.scene);
@@ -225,6 +233,20 @@ int main(int argc, char** argv) {
               "bin: %s\n",
               scene.bodyCount(), scene.triangleCount(), backend, o.steps,
               floors[static_cast<int>(o.scene.floor)]);
+  if (o.scene.backend == adb::demo::Backend::Convex) {
+    const adb::demo::DecompositionReport& d = scene.decomposition();
+    std::string perKind, volumes;
+    for (std::size_t k = 0; k < d.hullsPerKind.size(); ++k) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, d.volumeRatio[k] > 0 ? "%.2f" : "n/a",
+                    d.volumeRatio[k]);
+      perKind += (k ? ", " : "") + std::to_string(d.hullsPerKind[k]);
+      volumes += (k ? ", " : "") + std::string(ratio);
+    }
+    std::printf("convex decomposition (HACD): %zu hulls over %zu meshes (%s), prepared in %.2f s;"
+                " hulls' volume / mesh volume: %s\n",
+                d.hulls, d.hullsPerKind.size(), perKind.c_str(), d.seconds, volumes.c_str());
+  }
   if (adbBackend) {
     const adb::FrameSettings& f = o.scene.frame;
     std::printf("budget %s, p_min %.3g, k_min %d%s, p_accept %.3g%s\n", budgetText(f).c_str(),

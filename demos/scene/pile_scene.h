@@ -1,7 +1,8 @@
 // The demo's scene: generated concave bodies (tori, gears, torus knots), or copies of a given
-// mesh, dropped into a bin, simulated in a btDiscreteDynamicsWorld with either adb's MeshShape
-// or Bullet's GImpact, on the same meshes, poses, bin and time step. The bin's floor and walls
-// are triangle meshes, Bullet boxes, or a plane floor between box walls.
+// mesh, dropped into a bin, simulated in a btDiscreteDynamicsWorld with adb's MeshShape,
+// Bullet's GImpact, or a convex decomposition of each mesh (Bullet's HACD, hulls in a
+// btCompoundShape), on the same meshes, poses, masses, bin and time step. The bin's floor and
+// walls are triangle meshes, Bullet boxes, or a plane floor between box walls.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
@@ -15,11 +16,25 @@
 
 namespace adb::demo {
 
-enum class Backend { Adb, GImpact };
+enum class Backend {
+  Adb,
+  GImpact,
+  Convex,  ///< each mesh decomposed into convex hulls (convex_decomposition.h)
+};
 
-/// What the bin is made of (the same for both backends).
+/// What the convex backend prepared before the first step.
+struct DecompositionReport {
+  std::vector<std::size_t> hullsPerKind;  ///< per distinct mesh
+  /// Per distinct mesh, the hulls' summed volume over the mesh's (0 when the mesh is not
+  /// closed and has no volume): how much the hulls fill that the body does not.
+  std::vector<double> volumeRatio;
+  std::size_t hulls = 0;                  ///< over the distinct meshes
+  double seconds = 0.0;                   ///< the decompositions' wall clock, all meshes
+};
+
+/// What the bin is made of (the same for every backend).
 enum class Floor {
-  Mesh,   ///< floor and walls as box meshes (MeshShape, or btBvhTriangleMeshShape for GImpact)
+  Mesh,   ///< floor and walls as box meshes (MeshShape, else btBvhTriangleMeshShape)
   Box,    ///< floor and walls as btBoxShape, the way Bullet users build bins
   Plane,  ///< floor a btStaticPlaneShape (y = 0), walls as btBoxShape
 };
@@ -76,6 +91,8 @@ class PileScene {
   /// step's time).
   void probe(StepStats& stats) const;
   int bodyCount() const { return static_cast<int>(m_dynamic.size()); }
+  /// The convex backend's decomposition (empty for the others).
+  const DecompositionReport& decomposition() const { return m_decomposition; }
   std::size_t triangleCount() const { return m_triangles; }
 
  private:
@@ -83,6 +100,7 @@ class PileScene {
   std::unique_ptr<Impl> m_impl;
   std::vector<btRigidBody*> m_dynamic;
   std::size_t m_triangles = 0;
+  DecompositionReport m_decomposition;
 };
 
 }  // namespace adb::demo
