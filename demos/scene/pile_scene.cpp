@@ -221,8 +221,8 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
       m_decomposition.hulls += parts.hulls.size();
       m_decomposition.seconds += parts.seconds;
       kindShapes.push_back(s.makeCompound(parts));
-    } else {
-      kindShapes.push_back(s.makeShape(k, adb, true));
+    } else if (!adb) {  // adb gives every body its own MeshShape over the shared MeshData
+      kindShapes.push_back(s.makeShape(k, false, true));
     }
   }
 
