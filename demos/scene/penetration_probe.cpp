@@ -51,9 +51,15 @@ int crossings(const AdbTree& tree, const Vec3& point, const Vec3& direction, dou
   return count;
 }
 
-Aabb worldBox(const ProbeBody& body) {
+// The body's vertices in world coordinates, and their box.
+Aabb toWorld(const ProbeBody& body, std::vector<Vec3>& world) {
   Aabb box;
-  for (const Vec3& v : *body.vertices) box.grow(body.pose.rotation * v + body.pose.translation);
+  world.clear();
+  world.reserve(body.vertices->size());
+  for (const Vec3& v : *body.vertices) {
+    world.push_back(body.pose.rotation * v + body.pose.translation);
+    box.grow(world.back());
+  }
   return box;
 }
 
@@ -103,11 +109,11 @@ double distanceToMesh(const AdbTree& tree, const Vec3& point) {
   }
 }
 
-double deepestVertexInside(const ProbeBody& a, const ProbeBody& b, const Aabb& region) {
+double deepestVertexInside(const ProbeBody& a, const std::vector<Vec3>& worldVertices,
+                           const Aabb& region) {
   double deepest = 0.0;
   const Mat3 toA = a.pose.rotation.transpose();
-  for (const Vec3& v : *b.vertices) {
-    const Vec3 world = b.pose.rotation * v + b.pose.translation;
+  for (const Vec3& world : worldVertices) {
     if (!contains(region, world)) continue;
     const Vec3 local = toA * (world - a.pose.translation) - a.tree->origin();
     if (!insideMesh(*a.tree, local)) continue;
@@ -118,26 +124,24 @@ double deepestVertexInside(const ProbeBody& a, const ProbeBody& b, const Aabb& r
 
 PenetrationReport measurePenetration(const std::vector<ProbeBody>& bodies) {
   PenetrationReport report;
+  // Each body's vertices are placed in the world once, not once per pair it is in.
+  std::vector<std::vector<Vec3>> world(bodies.size());
   std::vector<Aabb> boxes;
   boxes.reserve(bodies.size());
-  for (const ProbeBody& b : bodies) boxes.push_back(worldBox(b));
+  for (std::size_t i = 0; i < bodies.size(); ++i) boxes.push_back(toWorld(bodies[i], world[i]));
   std::vector<double> deepest(bodies.size(), 0.0);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     for (std::size_t j = i + 1; j < bodies.size(); ++j) {
       const Aabb region = intersection(boxes[i], boxes[j]);
       if (region.empty()) continue;
       ++report.pairsTested;
-      const double intoI = deepestVertexInside(bodies[i], bodies[j], region);
-      const double intoJ = deepestVertexInside(bodies[j], bodies[i], region);
+      const double intoI = deepestVertexInside(bodies[i], world[j], region);
+      const double intoJ = deepestVertexInside(bodies[j], world[i], region);
       const double sizeI = sizeOf(*bodies[i].tree), sizeJ = sizeOf(*bodies[j].tree);
       const double depth = std::max(intoI, intoJ);
       deepest[i] = std::max(deepest[i], depth);
       deepest[j] = std::max(deepest[j], depth);
-      if (depth > report.depth) {
-        report.inside = intoI >= intoJ ? j : i;
-        report.penetrated = intoI >= intoJ ? i : j;
-        report.depth = depth;
-      }
+      report.depth = std::max(report.depth, depth);
       if (sizeI > 0.0) report.relative = std::max(report.relative, intoI / sizeI);
       if (sizeJ > 0.0) report.relative = std::max(report.relative, intoJ / sizeJ);
     }

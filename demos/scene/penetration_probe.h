@@ -35,7 +35,6 @@ struct PenetrationReport {
   /// pile as a whole is pressed into itself (the maximum is one pair's worst moment).
   double meanDepth = 0.0;
   std::size_t pairsTested = 0; ///< pairs whose world boxes overlapped
-  std::size_t inside = 0, penetrated = 0;  ///< the deepest: whose vertex, into which body
 };
 
 /// Whether `point` (tree-local coordinates: mesh minus tree.origin()) is inside the closed
@@ -43,8 +42,10 @@ struct PenetrationReport {
 bool insideMesh(const AdbTree& tree, const Vec3& point);
 /// Distance from `point` (tree-local) to the nearest triangle of `tree`.
 double distanceToMesh(const AdbTree& tree, const Vec3& point);
-/// The deepest vertex of `b` inside `a`, restricted to `region` (world).
-double deepestVertexInside(const ProbeBody& a, const ProbeBody& b, const Aabb& region);
+/// The deepest of `worldVertices` (another body's, in world coordinates) inside `a`, among
+/// those in `region` (world).
+double deepestVertexInside(const ProbeBody& a, const std::vector<Vec3>& worldVertices,
+                           const Aabb& region);
 
 /// Measures every pair of bodies whose world boxes overlap.
 PenetrationReport measurePenetration(const std::vector<ProbeBody>& bodies);

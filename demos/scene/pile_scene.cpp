@@ -8,8 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <random>
-#include <cstdio>
-#include <cstdlib>
 
 #include "common/triangle_arrays.h"
 #include "scene/convex_decomposition.h"
@@ -324,11 +322,6 @@ void PileScene::probe(StepStats& stats) const {
   stats.probedDepth = report.depth;
   stats.probedRelative = report.relative;
   stats.probedMean = report.meanDepth;
-  if (std::getenv("ADB_PROBE_DEBUG")) {
-    std::fprintf(stderr, "deepest: body %zu (kind %zu) into body %zu (kind %zu): %g\n",
-                 report.inside, report.inside % s.kinds.size(), report.penetrated,
-                 report.penetrated % s.kinds.size(), report.depth);
-  }
 }
 
 }  // namespace adb::demo

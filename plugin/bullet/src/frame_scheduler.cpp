@@ -204,9 +204,9 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
     // descends its deepest overlaps first, so that a cut descent has seen the contacts that
     // keep bodies apart (FrameBudget.ABindingBudgetKeepsEveryBodyOnTheGround: with the
     // trees' order a body went 0.086 into the ground, more than the test allows). The
-    // others keep the trees' order: a budget that never cuts
-    // a pair changes nothing (the same simulation as no budget), and resting contacts
-    // sample the same triangle pairs step after step.
+    // others keep the trees' order: a budget that never cuts a pair changes nothing (the
+    // same simulation as no budget), and resting contacts sample the same triangle pairs
+    // step after step.
     q.descent = starved || pair.meshMesh().cut() ? ExactDescent::DeepestFirst
                                                  : ExactDescent::TreeOrder;
   }

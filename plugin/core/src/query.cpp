@@ -84,7 +84,6 @@ bool boxesApart(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& h
   return (loX.array() > hiY.array() + gap).any() || (loY.array() > hiX.array() + gap).any();
 }
 
-
 void validatePose(const Pose& p, const char* which) {
   const PoseDefect defect = poseDefect(p);
   if (defect == PoseDefect::None) return;
@@ -253,6 +252,13 @@ struct Traversal::Impl {
     }
   }
 
+  // Whether the hit just found ends the query (stopAtFirstHit, or the witnesses are full),
+  // and why.
+  bool hitEndsQuery() const { return settings.stopAtFirstHit || witnessesFull; }
+  StopReason hitStop() const {
+    return witnessesFull ? StopReason::WitnessesFull : StopReason::ExactHit;
+  }
+
   // --- contact regions (QuerySettings::hitsPerRegion) -------------------------------------
   // The region of a child pair at depths (da, db): its parent's, or a new one where the pair
   // is the first on its path to reach regionDepth.
@@ -391,9 +397,9 @@ struct Traversal::Impl {
       if (bothLeaves(e)) {
         if (testLeaves(e.a, e.b, e.region)) {
           exactHit = true;
-          if (settings.stopAtFirstHit || witnessesFull) {
+          if (hitEndsQuery()) {
             heap.clear();  // decided: nothing is left open
-            finish(true, 1.0, witnessesFull ? StopReason::WitnessesFull : StopReason::ExactHit);
+            finish(true, 1.0, hitStop());
             return;
           }
         }
@@ -484,8 +490,8 @@ struct Traversal::Impl {
     if (bothLeaves(e)) {
       if (testLeaves(e.a, e.b, e.region)) {
         exactHit = true;
-        if (settings.stopAtFirstHit || witnessesFull) {  // (stopAtFirstHit: no region fills)
-          finish(true, 1.0, witnessesFull ? StopReason::WitnessesFull : StopReason::ExactHit);
+        if (hitEndsQuery()) {  // (stopAtFirstHit: no region fills)
+          finish(true, 1.0, hitStop());
           return true;
         }
       }

@@ -10,7 +10,7 @@
 // budget runs every third step regardless (its estimate is only re-measured by running). Each mesh-mesh pair is given what it needed
 // last step, at most an even share of what is left; then, while budget is left, the pair
 // whose contacts are least complete gets as much again, resumed where it stopped. A pair is
-// certain when its traversal completed (exact contacts, sampled per contact region) or
+// decided when its traversal completed (exact contacts, sampled per contact region) or
 // reached the quality target (kMin node pairs above pMin, which needs the paper's
 // best-first traversal; otherwise pairs run depth first). Pairs the budget cut get plausible
 // contacts from their unresolved node pairs with probability >= pAccept. A time budget holds
