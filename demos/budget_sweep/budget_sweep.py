@@ -28,7 +28,7 @@ import time
 
 import plots
 import tables
-from runs import RunSpec, run
+from runs import SETTLED_FROM, RunSpec, run
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FRACTIONS = (1 / 2, 1 / 4, 1 / 8)
@@ -56,6 +56,10 @@ def parse():
     p.add_argument("--seeds", type=int, default=4, help="seeds of the 1/4 budget and exact")
     p.add_argument("--rerun", action="store_true", help="repeat runs already in --out")
     a = p.parse_args()
+    if a.steps <= SETTLED_FROM:
+        # The need and exact mode's time are measured over the settled steps only.
+        sys.exit("budget_sweep: --steps must exceed %d (the need is measured from step %d on)"
+                 % (SETTLED_FROM, SETTLED_FROM))
     if not os.access(a.demo, os.X_OK):
         sys.exit("budget_sweep: no adb-demo at %s (build first, or --demo)" % a.demo)
     known = scenes(a.meshes)

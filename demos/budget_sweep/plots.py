@@ -88,6 +88,23 @@ def _save(fig, path, title):
     plt.close(fig)
 
 
+def _budget_lines(ax, mine, value, first, second, ringed, second_label=None):
+    """Per budget kind (SERIES), a solid line of value(r, first) and a hollow one of
+    value(r, second[0]) in style second[1], in the order the legend lists them; the runs that
+    lost bodies ringed on the `ringed` line."""
+    what, style = second
+    for kind, (name, colour, marker) in SERIES.items():
+        xs, rs = _series(mine, kind)
+        ys = {first: [value(r, first) for r in rs], what: [value(r, what) for r in rs]}
+        ax.plot(xs, ys[first], color=colour, marker=marker, label="%s, %s" % (name, first))
+        if ringed == first:
+            _mark_lost(ax, xs, ys[first], rs)
+        ax.plot(xs, ys[what], color=colour, marker=marker, linestyle=style,
+                markerfacecolor="none", label="%s, %s" % (name, second_label or what))
+        if ringed == what:
+            _mark_lost(ax, xs, ys[what], rs)
+
+
 def penetration(results, path, steps):
     scenes = list(dict.fromkeys(r.spec.scene for r in results))
     fig, axes = _panels(scenes)
@@ -97,14 +114,7 @@ def penetration(results, path, steps):
 
     for ax, scene in zip(axes, scenes):
         mine = [r for r in results if r.spec.scene == scene]
-        for kind, (name, colour, marker) in SERIES.items():
-            xs, rs = _series(mine, kind)
-            ax.plot(xs, [value(r, "max") for r in rs], color=colour, marker=marker,
-                    label="%s, max" % name)
-            means = [value(r, "mean") for r in rs]
-            ax.plot(xs, means, color=colour, marker=marker, linestyle="--",
-                    markerfacecolor="none", label="%s, mean" % name)
-            _mark_lost(ax, xs, means, rs)
+        _budget_lines(ax, mine, value, "max", ("mean", "--"), ringed="mean")
         others = [r for r in mine if r.spec.seed != 1]
         for what, marker in (("max", "x"), ("mean", "+")):
             ax.scatter([r.spec.fraction or 1.0 for r in others], [value(r, what) for r in others],
@@ -125,13 +135,8 @@ def step_time(results, path, steps):
 
     for ax, scene in zip(axes, scenes):
         mine = [r for r in results if r.spec.scene == scene]
-        for kind, (name, colour, marker) in SERIES.items():
-            xs, rs = _series(mine, kind)
-            whole = [value(r, "whole step") for r in rs]
-            ax.plot(xs, whole, color=colour, marker=marker, label="%s, whole step" % name)
-            _mark_lost(ax, xs, whole, rs)
-            ax.plot(xs, [value(r, "adb pairs") for r in rs], color=colour, marker=marker,
-                    linestyle=":", markerfacecolor="none", label="%s, adb pairs only" % name)
+        _budget_lines(ax, mine, value, "whole step", ("adb pairs", ":"), ringed="whole step",
+                      second_label="adb pairs only")
         _peer_lines(ax, mine, value, (("whole step", "-"),))
         _axes(ax, scene, "ms per step (mean)")
     _save(fig, path, "Time per step, mean over %d steps (GImpact: its first steps only)" % steps)

@@ -105,7 +105,8 @@ class Summary:
         return None
 
     def probed_max(self, last=None):
-        return max(self._col("probed_depth", 1, last))
+        # NaN, like _mean, where the window holds no probe (--gimpact-steps < --probe-every).
+        return max(self._col("probed_depth", 1, last), default=float("nan"))
 
     def probed_mean(self, last=None):
         """Each body's deepest penetration, averaged over bodies and probes."""
