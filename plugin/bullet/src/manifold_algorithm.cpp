@@ -34,10 +34,7 @@ void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
     // writes contacts: the solver visits manifolds in the order they were made, and a budget
     // that reorders the writing (a pair cut, then completed by a refinement) must not
     // reorder the solver, or a budget that is never reached would change the simulation.
-    if (!m_manifold) {
-      m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
-                                                 body1->getCollisionObject());
-    }
+    ensureManifold(body0, body1);
     m_scheduler->defer(this, body0, body1);
     return;
   }
@@ -52,13 +49,18 @@ void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
   result.refreshContactPoints();
 }
 
-btPersistentManifold* ManifoldAlgorithm::manifoldFor(const btCollisionObjectWrapper* body0,
-                                                     const btCollisionObjectWrapper* body1,
-                                                     btManifoldResult* result) {
+void ManifoldAlgorithm::ensureManifold(const btCollisionObjectWrapper* body0,
+                                       const btCollisionObjectWrapper* body1) {
   if (!m_manifold) {
     m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
                                                body1->getCollisionObject());
   }
+}
+
+btPersistentManifold* ManifoldAlgorithm::manifoldFor(const btCollisionObjectWrapper* body0,
+                                                     const btCollisionObjectWrapper* body1,
+                                                     btManifoldResult* result) {
+  ensureManifold(body0, body1);
   result->setPersistentManifold(m_manifold);
   return m_manifold;
 }

@@ -88,6 +88,10 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   bool m_swapped;
 
  private:
+  /// Makes the pair's manifold if it has none (Bullet's dispatcher owns it; released with
+  /// the algorithm).
+  void ensureManifold(const btCollisionObjectWrapper* body0,
+                      const btCollisionObjectWrapper* body1);
   /// Whether both bodies' poses are usable (adb/core/query.h, poseDefect). When one is not,
   /// the pair's manifold is emptied (its points would carry the bad pose into the solver)
   /// and the body is reported to the scheduler: the pair is skipped.
