@@ -10,6 +10,9 @@
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleShape.h>
 
+#include <algorithm>
+#include <limits>
+
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/box_query.h"
 #include "adb/core/primitive_contact.h"
@@ -18,6 +21,14 @@
 
 namespace adb {
 namespace {
+
+// Mesh-box contacts: the tree is cut into 2^4 regions, each giving its deepest contacts (a
+// manifold keeps 4 points; 16 candidates spread over the mesh leave it the choice), and a
+// node or triangle that cannot reach a thousandth of the reach deeper than its region's
+// best is not tested. A hundredth missed resting contacts by 17 % of their depth
+// (MeshConvexAgainstBullet); a thousandth costs no more on the piles.
+constexpr int kContactRegionLevel = 4;
+constexpr double kDepthSlack = 1e-3;
 
 using detail::fromBt;
 using detail::toBt;
@@ -208,8 +219,9 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
     return work;
   }
 
+  // Closed-form contacts of one triangle, offered to the selection; returns the deepest.
   std::uint64_t visited = 0;
-  visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) {
+  const auto contactsOf = [&](std::uint32_t t) {
     ++visited;
     const Triangle& tri = tree.triangles()[t];
     const Vec3& a = vertices[tri[0]];
@@ -229,7 +241,18 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
     }
     addCandidates(found, meshPose, tree.origin(), meshMargin, threshold, meshIsBody0,
                   static_cast<int>(tree.meshTriangle(t)), selection);
-  });
+    double deepest = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < found.count; ++i) deepest = std::max(deepest, -found.points[i].separation);
+    return deepest;
+  };
+  if (local.kind == LocalConvex::Box) {
+    // A box (a floor, a wall) has hundreds of triangles within reach of a resting body:
+    // each region of the tree gives its deepest contacts (forEachDeepestTriangleNear).
+    visited += forEachDeepestTriangleNear(tree, local.box, reach, kContactRegionLevel,
+                                         kDepthSlack * reach, contactsOf);
+  } else {
+    visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) { contactsOf(t); });
+  }
   selection.write(*result, meshIsBody0, *manifold);
   result->refreshContactPoints();
   return visited;

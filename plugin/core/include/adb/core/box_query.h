@@ -3,8 +3,12 @@
 // own bounds), answered with the hierarchy.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <utility>
 
 #include "adb/core/tree.h"
 
@@ -84,6 +88,132 @@ std::size_t forEachTriangleNear(const AdbTree& tree, const OrientedBox& meshBox,
                     .any();
       },
       f);
+}
+
+namespace detail {
+
+/// The range of a . (x - origin) over the node's box cut by its slab (tree-local): the box's
+/// range meets the range the slab allows, a . x = (a . n)(n . x) + a_perp . x with n . x
+/// within the slab and a_perp . x within the box. Why the slab: a flat patch tilted in the
+/// mesh frame has boxes much deeper than its triangles; its slab is as thin as the patch.
+inline std::pair<double, double> rangeAlong(const Node& n, const NodeDistribution& d,
+                                            const Vec3& a, const Vec3& origin) {
+  const Vec3 half = 0.5 * (n.boxHi() - n.boxLo());
+  const Vec3 centre = 0.5 * (n.boxHi() + n.boxLo()) - origin;
+  const double boxMid = a.dot(centre), boxHalf = a.cwiseAbs().dot(half);
+  const Vec3 normal(d.normal[0], d.normal[1], d.normal[2]);
+  const double along = a.dot(normal);
+  const Vec3 across = a - along * normal;
+  const double slabMid =
+      along * (static_cast<double>(d.offset) - normal.dot(origin)) + across.dot(centre);
+  const double slabHalf =
+      std::abs(along) * static_cast<double>(d.halfWidth) + across.cwiseAbs().dot(half);
+  return {std::max(boxMid - boxHalf, slabMid - slabHalf),
+          std::min(boxMid + boxHalf, slabMid + slabHalf)};
+}
+
+/// An upper bound on how deep a point of the node can lie inside `solid` (tree-local): a
+/// point's depth is at most its distance to each pair of faces, min_k (half_k - |q_k|).
+inline double deepestPossible(const Node& n, const NodeDistribution& d,
+                              const OrientedBox& solid) {
+  double deepest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const auto [lo, hi] = rangeAlong(n, d, solid.axes.col(k), solid.centre);
+    const double nearest = std::max({0.0, lo, -hi});
+    deepest = std::min(deepest, solid.half[k] - nearest);
+  }
+  return deepest;
+}
+
+}  // namespace detail
+
+/// Calls f(treeTriangle) for triangles of `tree` within `reach` of the box `solid`
+/// (tree-local: mesh coordinates minus tree.origin()), sampling the deepest contacts
+/// instead of visiting every such triangle: the tree is cut into regions `regionLevel`
+/// levels below the root, and inside a region a node or triangle is visited only if some
+/// point of it could lie deeper inside `solid` than the region's deepest contact so far by
+/// more than `slack`. f(t) returns the depth it found for tree triangle t (negative when
+/// apart, -infinity for no contact).
+/// Why: a body resting on a floor or wall box has hundreds of triangles within reach, all
+/// nearly as deep; a manifold keeps 4 points, the deepest and the most spread. Each region
+/// still gives a contact within `slack` of its deepest (branch and bound on the maximum),
+/// so the contacts that hold the body are kept, at a fraction of the tests. A node's bound
+/// is its box cut by its slab (a flat patch tilted in the mesh frame has boxes much deeper
+/// than its triangles); a triangle's, its vertices'. Deeper-bounded children are entered
+/// first, so that the region's best is found early. No allocation. Returns the nodes
+/// visited (f's calls are counted by the caller).
+template <typename F>
+std::size_t forEachDeepestTriangleNear(const AdbTree& tree, const OrientedBox& solid,
+                                       double reach, int regionLevel, double slack, F&& f) {
+  if (!(solid.half.array() >= 0.0).all() || !solid.half.allFinite() ||
+      !solid.centre.allFinite() || !solid.axes.allFinite() || !(reach >= 0.0) ||
+      !std::isfinite(reach) || !(slack >= 0.0)) {
+    return 0;
+  }
+  const auto& nodes = tree.nodes();
+  const auto& slabs = tree.distributions();
+  const auto& vertices = tree.localVertices();
+  const auto nodeBound = [&](std::uint32_t i) {
+    return detail::deepestPossible(nodes[i], slabs[i], solid);
+  };
+  const auto triangleBound = [&](std::uint32_t t) {
+    double deepest = std::numeric_limits<double>::infinity();
+    const Triangle& tri = tree.triangles()[t];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 axis = solid.axes.col(k);
+      const double q0 = axis.dot(vertices[tri[0]] - solid.centre);
+      const double q1 = axis.dot(vertices[tri[1]] - solid.centre);
+      const double q2 = axis.dot(vertices[tri[2]] - solid.centre);
+      const double nearest = std::max({0.0, std::min({q0, q1, q2}), -std::max({q0, q1, q2})});
+      deepest = std::min(deepest, solid.half[k] - nearest);
+    }
+    return deepest;
+  };
+  // A region starts with nothing found: only what comes within reach counts (a point
+  // farther than `reach` outside the box has a bound below -reach).
+  const double none = -reach - slack;
+  // Regions are subtrees and the walk is depth first: one region is open at a time, and
+  // its entries are all popped before the next region's root.
+  struct Entry {
+    std::uint32_t node;
+    int level;  // below the root; -1 inside a region
+  };
+  Entry stack[64];
+  int top = 0;
+  stack[top++] = Entry{0, 0};
+  double best = none;  // the open region's deepest contact
+  std::size_t visited = 0;
+  while (top > 0) {
+    const Entry e = stack[--top];
+    const Node& n = nodes[e.node];
+    ++visited;
+    const bool regionRoot = e.level >= regionLevel || (e.level >= 0 && n.isLeaf());
+    if (regionRoot) best = none;
+    const bool inRegion = e.level < 0 || regionRoot;
+    // Above the regions the same test, against nothing found yet.
+    if (!(nodeBound(e.node) > (inRegion ? best : none) + slack)) continue;
+    if (n.isLeaf()) {
+      // A triangle's bound (its vertices) costs a fraction of f's test: not counted.
+      for (std::uint32_t t = n.firstTriangle(); t < n.firstTriangle() + n.triangleCount(); ++t) {
+        // f's depth counts at most as the bound: its test may measure depth otherwise (a
+        // triangle across a thin box overlaps it on every axis), and a region's best must
+        // compare with the bounds it prunes by.
+        const double bound = triangleBound(t);
+        if (bound > best + slack) {
+          best = std::max(best, std::min(bound, static_cast<double>(f(t))));
+        }
+      }
+      continue;
+    }
+    std::uint32_t first = n.firstChild(), second = first + 1;
+    if (inRegion && nodeBound(first) > nodeBound(second)) {
+      std::swap(first, second);  // the deeper one is popped first
+    }
+    const int below = inRegion ? -1 : e.level + 1;
+    stack[top++] = Entry{first, below};
+    stack[top++] = Entry{second, below};
+  }
+  return visited;
 }
 
 }  // namespace adb
