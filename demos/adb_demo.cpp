@@ -150,7 +150,7 @@ void writeCsvHeader(std::ofstream& csv) {
   csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y,"
          "frame_us,contact_us,pairs,exact_pairs,quality_pairs,cut_pairs,node_pairs,exact_contacts,"
          "plausible_contacts,mean_confidence,worst_confidence,body_penetration,bin_penetration,"
-         "floor_penetration,floor_penetration_relative,lost,probed_depth,probed_relative,probed_mean,needed_node_pairs,mean_completeness,worst_completeness\n";
+         "floor_penetration,floor_penetration_relative,lost,probed_depth,probed_relative,probed_mean,needed_node_pairs,mean_completeness,worst_completeness,other_node_pairs\n";
 }
 
 void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
@@ -168,7 +168,7 @@ void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
     csv << ",,";
   }
   csv << ',' << f.neededNodePairs << ',' << f.meanCompleteness << ',' << f.worstCompleteness
-      << '\n';
+      << ',' << f.otherNodePairs << '\n';
 }
 
 struct Totals {

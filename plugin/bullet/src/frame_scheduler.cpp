@@ -27,6 +27,9 @@ constexpr std::uint64_t kFirstWholeWork = 128;
 // runs regardless: two kept steps hold a resting body; a budget smaller than one pair
 // overruns by that pair every third step rather than letting the body fall.
 constexpr std::uint64_t kMaxSkippedSteps = 2;
+// A pair with the world whose mesh moved less than this fraction of its contact breaking
+// threshold since it last ran may keep its contacts under a binding budget.
+constexpr btScalar kRestingMotion = btScalar(0.25);
 // Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
 // count most, one odd step does not swing the next step's shares.
 constexpr double kSmoothing = 0.2;
@@ -63,6 +66,12 @@ double doubtOf(const std::vector<OpenPair>& open) {
   double doubt = 0.0;
   for (const OpenPair& o : open) doubt += static_cast<double>(o.upper);
   return std::min(1.0, doubt);
+}
+
+// What a pair is expected to cost: its last cost and a quarter more (bodies settling into
+// each other touch more triangles step by step), at least `least`.
+std::uint64_t expectedCost(std::uint64_t last, std::uint64_t least) {
+  return std::max(last + last / 4, least);
 }
 
 }  // namespace
@@ -130,13 +139,19 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
   m_unqueried = m_pairs.size();
   m_undecided = 0;
   m_stats.otherPairs = static_cast<std::uint32_t>(m_wholes.size());
-  // Whole pairs the budget skipped run first next time (the longest waiting first): kept
-  // contacts hold a body only while it barely moves. Ties keep the dispatch's order, so that
-  // node-pair budgets stay reproducible (std::sort: stable_sort would allocate).
+  // Whole pairs run in the order of how far their bodies moved since they last ran (never
+  // run first): a skipped pair keeps its last contacts, true only while its bodies barely
+  // move. Ties (resting bodies) keep the dispatch's order, so that node-pair budgets stay
+  // reproducible (std::sort: stable_sort would allocate).
+  for (DeferredPair& pair : m_wholes) {
+    pair.motion = pair.algorithm->motionSinceLastRun(pair.transform0, pair.transform1);
+  }
   std::sort(m_wholes.begin(), m_wholes.end(), [](const DeferredPair& x, const DeferredPair& y) {
+    if (x.motion != y.motion) return x.motion > y.motion;
     const std::uint64_t rx = x.algorithm->lastRun(), ry = y.algorithm->lastRun();
     return rx != ry ? rx < ry : x.sequence < y.sequence;
   });
+  m_binding = binding(settings);
   firstPass(settings);
   refine(settings);
   writeContacts(settings);
@@ -245,12 +260,35 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   return work.nodePairs + work.triangleTests + work.pairsPopped;
 }
 
+// Whether the budget is too small for every pair's expected cost: only then may a resting
+// pair keep its contacts (a budget never reached must not change the simulation).
+bool FrameScheduler::binding(const FrameSettings& settings) const {
+  if (unbudgeted(settings)) return false;
+  std::uint64_t units = 0;
+  double micros = 0.0;
+  for (const DeferredPair& p : m_wholes) {
+    const std::uint64_t cost = expectedCost(p.algorithm->lastWork(), kFirstWholeWork);
+    units += cost;
+    micros += p.algorithm->lastMicros() > 0.0 ? 1.25 * p.algorithm->lastMicros()
+                                              : static_cast<double>(cost) * m_microsPerWholeUnit;
+  }
+  for (const DeferredPair& p : m_pairs) {
+    const std::uint64_t cost = expectedCost(p.meshMesh().needed(), kFirstGrant);
+    units += cost;
+    micros += static_cast<double>(cost) * m_microsPerNodePair + m_writeMicros;
+  }
+  return units > settings.budgetNodePairs || micros > settings.budgetMicros;
+}
+
 // Every pair gets what it needed last step and a quarter more (at least kFirstGrant; a cut
 // pair's need is twice what it used), at most an even share of what is left, so a tight
 // budget still reaches every pair before any is refined. Pairs with a static (or
 // kinematic) body go first and share the budget among themselves: a missed contact between
 // two moving bodies lets them overlap for a step, a missed one with the world loses a body
-// through the floor.
+// through the floor. Under a binding budget those whose bodies rest keep their contacts:
+// before that (the world taking all it wanted), the mesh-mesh pairs of a pile on a box
+// floor got 0.3 % of a quarter budget, wrote no contacts, and the pile sank through itself
+// and the floor (docs/bullet-results.md).
 void FrameScheduler::firstPass(const FrameSettings& settings) {
   std::uint64_t anchoredPairs = 0;
   for (const DeferredPair& p : m_pairs) anchoredPairs += anchored(p) ? 1 : 0;
@@ -258,12 +296,20 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
   const std::uint64_t all = m_pairs.size() + m_wholes.size();
   for (bool group : {true, false}) {
     std::uint64_t waiting = group ? anchoredPairs : all - anchoredPairs;
-    // The whole pairs first (a box floor, a plane, a convex body: settled in one run).
-    // Those with a static body may take all that is left, the others their share; a pair
-    // that does not fit is left for the refinement, and if it does not run this step it
-    // keeps its last contacts and goes first next step.
+    // The whole pairs first (a box floor, a plane, a convex body: settled in one run), the
+    // ones that moved most first. Those with a static body may take all that is left, the
+    // others their share; a pair that does not fit is left for the refinement, and if it
+    // does not run this step it keeps its last contacts.
     for (DeferredPair& pair : m_wholes) {
       if (anchored(pair) != group) continue;
+      // Under a budget too small for every pair, a pair with the world whose mesh has
+      // barely moved since it last ran keeps its contacts (refreshed for the new poses):
+      // they are as good as new, and its cost goes to the pairs that changed.
+      if (group && m_binding &&
+          pair.motion < kRestingMotion * pair.algorithm->breakingThreshold()) {
+        --waiting;
+        continue;
+      }
       // A pair with the world goes before the mesh-mesh pairs' contact writing (a cut pair
       // that finds no time to write keeps its last contacts; a body that misses the floor
       // is lost).
@@ -280,7 +326,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
       // What it needed last step and a quarter more (a pair's need grows while bodies
       // settle into each other), at least a few levels of both trees.
       const std::uint64_t last = pair.meshMesh().needed();
-      const std::uint64_t wanted = std::max(last + last / 4, kFirstGrant);
+      const std::uint64_t wanted = expectedCost(last, kFirstGrant);
       const std::uint64_t grant = std::min(wanted, share(settings, waiting));
       // The time cap is what is left of the step: the share is in the grant.
       query(pair, grant, microsLeft(settings), settings, false, grant < wanted);
@@ -304,18 +350,22 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   // triangles step by step; at least a few nodes for a pair never run), in work and in time
   // (a GJK pair costs far more per unit than a closed-form one).
   const std::uint64_t last = algorithm.lastWork();
-  const std::uint64_t expected = std::max(last + last / 4, kFirstWholeWork);
+  const std::uint64_t expected = expectedCost(last, kFirstWholeWork);
   const double expectedMicros = algorithm.lastMicros() > 0.0
                                     ? 1.25 * algorithm.lastMicros()
                                     : static_cast<double>(expected) * m_microsPerWholeUnit;
   if (expected > shareUnits || expectedMicros > microsShare) {
     // A pair expected to cost more than the whole budget would never run again (the
     // estimate is re-measured only by running), and its kept contacts would not hold a
-    // moving body: after kMaxSkippedSteps it runs regardless, the step overrunning by that
-    // one pair.
+    // moving body: it runs regardless, the step overrunning by that one pair, once its
+    // bodies have moved as far as the contact breaking threshold (its kept contacts are no
+    // longer where they touch: a box shoved along a grid sank through it, supported every
+    // third step) or after kMaxSkippedSteps.
     const bool neverFits =
         expected > settings.budgetNodePairs || expectedMicros > settings.budgetMicros;
-    if (!neverFits || m_step - algorithm.lastRun() <= kMaxSkippedSteps) return false;
+    const bool stale = m_step - algorithm.lastRun() > kMaxSkippedSteps ||
+                       !(pair.motion < algorithm.breakingThreshold());
+    if (!neverFits || !stale) return false;
   }
   PairWrappers wrappers(pair);
   btManifoldResult result(&wrappers.body0, &wrappers.body1);
@@ -328,6 +378,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
     m_microsPerWholeUnit += kSmoothing * (micros / static_cast<double>(work) - m_microsPerWholeUnit);
   }
   m_stats.nodePairs += work;
+  m_stats.otherNodePairs += work;
   pair.written = true;
   return true;
 }
@@ -346,12 +397,9 @@ void FrameScheduler::keepSkipped() {
 // first, re-run best first (ties: pairs with a static body, then the earlier pair, so that
 // node-pair budgets stay reproducible).
 void FrameScheduler::refine(const FrameSettings& settings) {
-  // Whole pairs that did not fit their share: in turn, while what is left covers them.
-  for (DeferredPair& pair : m_wholes) {
-    if (!pair.written) {
-      runWhole(pair, nodePairsLeft(settings), microsLeft(settings, !anchored(pair)), settings);
-    }
-  }
+  // Whole pairs that did not fit their share or rest: in turn, while what is left covers
+  // them; again once the mesh-mesh pairs are refined.
+  runWholesLeft(settings);
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (!m_pairs[i].decided()) m_order.push_back(i);
@@ -392,6 +440,17 @@ void FrameScheduler::refine(const FrameSettings& settings) {
     } else if (progress > 0) {  // one that could not take a step would be re-run forever
       m_order.push_back(static_cast<std::uint32_t>(&pair - m_pairs.data()));
       std::push_heap(m_order.begin(), m_order.end(), moreCertain);
+    }
+  }
+  runWholesLeft(settings);
+}
+
+
+// Runs the whole pairs not run yet, in their order, while what is left covers them.
+void FrameScheduler::runWholesLeft(const FrameSettings& settings) {
+  for (DeferredPair& pair : m_wholes) {
+    if (!pair.written) {
+      runWhole(pair, nodePairsLeft(settings), microsLeft(settings, !anchored(pair)), settings);
     }
   }
 }

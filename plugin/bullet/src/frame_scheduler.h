@@ -35,6 +35,9 @@ struct DeferredPair {
   btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
   int partId0, index0, partId1, index1;
   std::uint32_t sequence;  // order of the dispatch: ties in the whole pairs' order
+  // A whole pair: how far its mesh moved against the other body since it last ran (its
+  // kept contacts' error), infinite if it never ran. The stalest run first.
+  btScalar motion = 0;
   // Scheduling state of this step.
   std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
   double confidence = 0.0;     // see FrameStats::meanConfidence
@@ -79,6 +82,7 @@ class FrameScheduler {
   using Clock = std::chrono::steady_clock;
 
   void firstPass(const FrameSettings& settings);
+  bool binding(const FrameSettings& settings) const;
   void refine(const FrameSettings& settings);
   /// Collides a pair that is not refined (mesh against a convex shape, a plane or another
   /// concave shape) when its last cost fits in `share` node pairs and `microsShare`, or when
@@ -86,6 +90,7 @@ class FrameScheduler {
   /// otherwise.
   bool runWhole(DeferredPair& pair, std::uint64_t share, double microsShare,
                 const FrameSettings& settings);
+  void runWholesLeft(const FrameSettings& settings);
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
@@ -117,6 +122,7 @@ class FrameScheduler {
   // Pairs of this step not queried yet, and queried but neither decided nor written.
   std::size_t m_unqueried = 0;
   std::size_t m_undecided = 0;
+  bool m_binding = false;  // this step's budget is smaller than its pairs' expected cost
   double m_margin = 0.0;  // microseconds held back from a time budget (updateMargin)
   bool m_collecting = false;
   std::uint64_t m_step = 0;  // steps begun

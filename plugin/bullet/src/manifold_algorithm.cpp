@@ -3,6 +3,9 @@
 
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
+
+#include <limits>
 
 #include "adb/bullet/dispatcher.h"
 #include "conversions.h"
@@ -47,6 +50,49 @@ void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
   btManifoldResult result(body0, body1);
   result.setPersistentManifold(m_manifold);
   result.refreshContactPoints();
+}
+
+btTransform ManifoldAlgorithm::meshInOther(const btTransform& transform0,
+                                           const btTransform& transform1) const {
+  return m_swapped ? transform0.inverseTimes(transform1) : transform1.inverseTimes(transform0);
+}
+
+void ManifoldAlgorithm::rememberPoses(const btCollisionObjectWrapper* body0,
+                                      const btCollisionObjectWrapper* body1) {
+  const btTransform pose = meshInOther(body0->getWorldTransform(), body1->getWorldTransform());
+  const btQuaternion rotation = pose.getRotation();
+  for (int i = 0; i < 3; ++i) m_lastOrigin[i] = pose.getOrigin()[i];
+  for (int i = 0; i < 4; ++i) m_lastRotation[i] = static_cast<float>(rotation[i]);
+  btVector3 centre;
+  btScalar radius = 0;
+  (m_swapped ? body1 : body0)->getCollisionShape()->getBoundingSphere(centre, radius);
+  m_meshReach = static_cast<float>(centre.length() + radius);
+}
+
+btScalar ManifoldAlgorithm::motionSinceLastRun(const btTransform& transform0,
+                                               const btTransform& transform1) const {
+  if (m_lastRun == 0) return std::numeric_limits<btScalar>::infinity();
+  // A mesh point p moved by at most |t' - t| + 2 sin(theta/2) |p|, theta the angle between
+  // the two rotations. With d = |q' - q| (q' taken on q's side), 1 - cos(theta/2) = d^2/2:
+  // from the difference, not from 1 - (q . q')^2, which loses all digits near rest.
+  const btTransform now = meshInOther(transform0, transform1);
+  const btQuaternion rotation = now.getRotation();
+  btScalar dot = 0;
+  for (int i = 0; i < 4; ++i) dot += rotation[i] * static_cast<btScalar>(m_lastRotation[i]);
+  const btScalar side = dot < 0 ? btScalar(-1) : btScalar(1);
+  btScalar d2 = 0;
+  for (int i = 0; i < 4; ++i) {
+    const btScalar d = rotation[i] - side * static_cast<btScalar>(m_lastRotation[i]);
+    d2 += d * d;
+  }
+  const btScalar oneMinusCos = btMin(d2 / 2, btScalar(1));
+  const btScalar sine = btSqrt(oneMinusCos * (2 - oneMinusCos));
+  const btVector3 last(m_lastOrigin[0], m_lastOrigin[1], m_lastOrigin[2]);
+  return (now.getOrigin() - last).length() + 2 * sine * static_cast<btScalar>(m_meshReach);
+}
+
+btScalar ManifoldAlgorithm::breakingThreshold() const {
+  return m_manifold ? m_manifold->getContactBreakingThreshold() : btScalar(0);
 }
 
 void ManifoldAlgorithm::ensureManifold(const btCollisionObjectWrapper* body0,

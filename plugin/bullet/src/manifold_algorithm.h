@@ -12,6 +12,7 @@
 #include <BulletCollision/BroadphaseCollision/btDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionCreateFunc.h>
+#include <LinearMath/btTransform.h>
 
 #include <cstdint>
 #include <new>
@@ -56,8 +57,13 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
                                  std::uint64_t step) {
     m_lastWork = collideNow(body0, body1, info, result);
     m_lastRun = step;
+    rememberPoses(body0, body1);
     return m_lastWork;
   }
+  /// An upper bound on how far any point of the mesh has moved against the other body
+  /// since the last collideScheduled (infinite if it never ran), for the wrappers' world
+  /// transforms: a skipped pair's kept contacts stay true while it is small.
+  btScalar motionSinceLastRun(const btTransform& transform0, const btTransform& transform1) const;
   /// The scheduler's measure of the last collideScheduled's time (microseconds).
   double lastMicros() const { return m_lastMicros; }
   void setLastMicros(double micros) { m_lastMicros = micros; }
@@ -65,6 +71,8 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   std::uint64_t lastWork() const { return m_lastWork; }
   /// The scheduler's step at which collideScheduled last ran (0: never).
   std::uint64_t lastRun() const { return m_lastRun; }
+  /// The pair's manifold's contact breaking threshold (0 before it has one).
+  btScalar breakingThreshold() const;
   /// Refreshes the pair's manifold for the bodies' new poses (Bullet's refreshContactPoints)
   /// without colliding: what a pair the budget skipped keeps from its last step.
   void keepLastContacts(const btCollisionObjectWrapper* body0,
@@ -96,12 +104,22 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// the pair's manifold is emptied (its points would carry the bad pose into the solver)
   /// and the body is reported to the scheduler: the pair is skipped.
   bool acceptPoses(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
+  /// Keeps the mesh's pose in the other body's frame, and how far its points reach from
+  /// its origin, for motionSinceLastRun.
+  void rememberPoses(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
+  btTransform meshInOther(const btTransform& transform0, const btTransform& transform1) const;
 
   btPersistentManifold* m_manifold = nullptr;
   detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
   std::uint64_t m_lastWork = 0;
   std::uint64_t m_lastRun = 0;
   double m_lastMicros = 0.0;
+  // The mesh's pose in the other body's frame when the pair last ran: the rotation as a
+  // float quaternion (its error, 1e-7 of the mesh's reach, is far below any contact
+  // threshold), so that the algorithm fits Bullet's default pool (algorithmPoolElementSize).
+  btScalar m_lastOrigin[3] = {0, 0, 0};
+  float m_lastRotation[4] = {0, 0, 0, 1};
+  float m_meshReach = 0;  // the farthest point of the mesh from its origin, bounded
 };
 
 /// The dispatcher's factory for an algorithm constructed as Algo(ci, body0, body1, swapped);

@@ -91,6 +91,8 @@ struct FrameStats {
   std::uint32_t queries = 0;        ///< pair queries run (a pair re-run counts again)
   std::uint64_t nodePairs = 0;      ///< node pairs evaluated, all queries of the step (the
                                     ///< other pairs' nodes and triangles included)
+  std::uint64_t otherNodePairs = 0;  ///< of which the other pairs' (what the world's contacts
+                                     ///< took from the budget)
   std::uint32_t exactContacts = 0;  ///< contact points from intersecting triangle pairs
   std::uint32_t plausibleContacts = 0;  ///< contact points from unresolved node pairs
   double micros = 0.0;              ///< wall clock of the step's pair work, contacts included
