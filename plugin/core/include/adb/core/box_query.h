@@ -41,6 +41,28 @@ std::size_t forEachTriangleWhere(const AdbTree& tree, Overlaps&& overlaps, F&& f
   return visited;
 }
 
+/// Whether a node's box (tree-local) overlaps an oriented box, on the 6 face axes of the
+/// two boxes (conservative: the 9 edge axes would prune a few more).
+struct OrientedBoxOverlap {
+  Vec3 centre;  // tree-local
+  Mat3 axes;
+  Mat3 absAxes;
+  Vec3 half;
+  Vec3 extent;  // its half extents along the tree's axes
+
+  OrientedBoxOverlap(const Vec3& localCentre, const Mat3& boxAxes, const Vec3& boxHalf)
+      : centre(localCentre), axes(boxAxes), absAxes(boxAxes.cwiseAbs()), half(boxHalf),
+        extent(absAxes * boxHalf) {}
+
+  bool operator()(const Node& n) const {
+    const Vec3 nodeHalf = 0.5 * (n.boxHi() - n.boxLo());
+    const Vec3 offset = centre - 0.5 * (n.boxHi() + n.boxLo());
+    if ((offset.cwiseAbs().array() > (nodeHalf + extent).array()).any()) return false;
+    const Vec3 along = axes.transpose() * offset;  // on the oriented box's axes
+    return !(along.cwiseAbs().array() > (half + absAxes.transpose() * nodeHalf).array()).any();
+  }
+};
+
 }  // namespace detail
 
 /// Calls f(treeTriangle) for every triangle of `tree` in a leaf whose box overlaps
@@ -73,21 +95,9 @@ std::size_t forEachTriangleNear(const AdbTree& tree, const OrientedBox& meshBox,
       !meshBox.centre.allFinite()) {
     return 0;
   }
-  const Vec3 centre = meshBox.centre - tree.origin();
-  const Mat3& axes = meshBox.axes;
-  const Mat3 absAxes = axes.cwiseAbs();
-  const Vec3 extent = absAxes * meshBox.half;  // its half extents along the tree's axes
-  return detail::forEachTriangleWhere(
-      tree,
-      [&](const Node& n) {
-        const Vec3 half = 0.5 * (n.boxHi() - n.boxLo());
-        const Vec3 offset = centre - 0.5 * (n.boxHi() + n.boxLo());
-        if ((offset.cwiseAbs().array() > (half + extent).array()).any()) return false;
-        const Vec3 along = axes.transpose() * offset;  // on the oriented box's axes
-        return !(along.cwiseAbs().array() > (meshBox.half + absAxes.transpose() * half).array())
-                    .any();
-      },
-      f);
+  const detail::OrientedBoxOverlap overlaps(meshBox.centre - tree.origin(), meshBox.axes,
+                                            meshBox.half);
+  return detail::forEachTriangleWhere(tree, overlaps, f);
 }
 
 namespace detail {
@@ -153,6 +163,9 @@ std::size_t forEachDeepestTriangleNear(const AdbTree& tree, const OrientedBox& s
   const auto& nodes = tree.nodes();
   const auto& slabs = tree.distributions();
   const auto& vertices = tree.localVertices();
+  // The cheap test first: most nodes of a big mesh under a small box fail it.
+  const detail::OrientedBoxOverlap overlaps(solid.centre, solid.axes,
+                                            solid.half + Vec3::Constant(reach));
   const auto nodeBound = [&](std::uint32_t i) {
     return detail::deepestPossible(nodes[i], slabs[i], solid);
   };
@@ -176,11 +189,12 @@ std::size_t forEachDeepestTriangleNear(const AdbTree& tree, const OrientedBox& s
   // its entries are all popped before the next region's root.
   struct Entry {
     std::uint32_t node;
-    int level;  // below the root; -1 inside a region
+    int level;     // below the root; -1 inside a region
+    double bound;  // inside a region: nodeBound, computed when its parent ordered it
   };
   Entry stack[64];
   int top = 0;
-  stack[top++] = Entry{0, 0};
+  stack[top++] = Entry{0, 0, 0.0};
   double best = none;  // the open region's deepest contact
   std::size_t visited = 0;
   while (top > 0) {
@@ -190,8 +204,8 @@ std::size_t forEachDeepestTriangleNear(const AdbTree& tree, const OrientedBox& s
     const bool regionRoot = e.level >= regionLevel || (e.level >= 0 && n.isLeaf());
     if (regionRoot) best = none;
     const bool inRegion = e.level < 0 || regionRoot;
-    // Above the regions the same test, against nothing found yet.
-    if (!(nodeBound(e.node) > (inRegion ? best : none) + slack)) continue;
+    if (!overlaps(n)) continue;
+    if (inRegion && !((e.level < 0 ? e.bound : nodeBound(e.node)) > best + slack)) continue;
     if (n.isLeaf()) {
       // A triangle's bound (its vertices) costs a fraction of f's test: not counted.
       for (std::uint32_t t = n.firstTriangle(); t < n.firstTriangle() + n.triangleCount(); ++t) {
@@ -205,13 +219,16 @@ std::size_t forEachDeepestTriangleNear(const AdbTree& tree, const OrientedBox& s
       }
       continue;
     }
-    std::uint32_t first = n.firstChild(), second = first + 1;
-    if (inRegion && nodeBound(first) > nodeBound(second)) {
-      std::swap(first, second);  // the deeper one is popped first
+    const std::uint32_t first = n.firstChild();
+    if (!inRegion) {
+      stack[top++] = Entry{first, e.level + 1, 0.0};
+      stack[top++] = Entry{first + 1, e.level + 1, 0.0};
+      continue;
     }
-    const int below = inRegion ? -1 : e.level + 1;
-    stack[top++] = Entry{first, below};
-    stack[top++] = Entry{second, below};
+    Entry a{first, -1, nodeBound(first)}, b{first + 1, -1, nodeBound(first + 1)};
+    if (a.bound > b.bound) std::swap(a, b);  // the deeper one is popped first
+    stack[top++] = a;
+    stack[top++] = b;
   }
   return visited;
 }
