@@ -7,7 +7,7 @@
 // parameters; the budgets that reach 5 % and 1 % error), reliability.csv (calibration of
 // the confidences), cells.csv (the paper's Fig. 8) and, through
 // demos/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
-// shared/design/BENCHMARK.md. Timing policy: timing.h (also in --help).
+// docs/benchmark.md. Timing policy: timing.h (also in --help).
 //
 // Exit status: 0 done, 2 usage error (nothing run), 1 input error (a mesh that cannot be
 // read or is invalid): models are processed in command-line order and the files describe

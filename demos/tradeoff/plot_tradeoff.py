@@ -18,8 +18,7 @@ What this file holds, top to bottom:
     why it was skipped;
   * `main` and the `--self-test` (synthetic data generator and checks).
 
-The spec is /work/shared/design/BENCHMARK.md; the paper's figures are described in
-ALGORITHM.md section 8.
+The spec is docs/benchmark.md (the paper's Figs. 8-11).
 """
 
 import argparse
@@ -452,7 +451,7 @@ def load(directory):
 def featured_adb(settings, cap):
     """The ADB settings without budget worth a line when there are too many for one plot.
 
-    The paper's default first, then the two contrasts ALGORITHM.md section 8 quotes (a
+    The paper's default first, then the two contrasts the paper (section 8) quotes (a
     smaller k_min at the same p_min, a smaller p_min at the same k_min), then the rest.
     """
     pool = [s for s in settings if s.method == "adb" and s.budget_us is None]

@@ -1,5 +1,5 @@
 // queries.csv: one row per query and method, with the poses at full precision so that anyone
-// can re-check every answer with another library (format: shared/design/BENCHMARK.md).
+// can re-check every answer with another library (format: docs/benchmark.md).
 // Rows are written as they are measured and flushed after each model, so the rows of
 // finished models survive a later failure.
 #pragma once

@@ -1,4 +1,4 @@
-// adb-tradeoff's files have exactly the documented columns (shared/design/BENCHMARK.md and
+// adb-tradeoff's files have exactly the documented columns (docs/benchmark.md and
 // the tool's issue), a row for every query of every method, a summary that agrees with the
 // rows it summarises, and reliability.csv's 10 bins per estimating method setting; a second
 // run adds the baselines (exact-cut, box-first, root-boxes) and the work budgets.

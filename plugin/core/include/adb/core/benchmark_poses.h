@@ -1,4 +1,4 @@
-// Poses of Zachmann's benchmark procedure (docs: ../shared/design/BENCHMARK.md), shared by the
+// Poses of Zachmann's benchmark procedure (docs/benchmark.md), shared by the
 // tests, the demos and the trade-off study so that all of them query the same configurations.
 #pragma once
 
