@@ -26,13 +26,16 @@ def _series(mine, kind):
     return [p[0] for p in pts] + [1.0], [p[1] for p in pts] + exact
 
 
-def _panels(scenes):
+def _panels(results):
+    """One panel per scene, in the runs' order: the figure and (axis, scene, its runs)."""
+    scenes = list(dict.fromkeys(r.spec.scene for r in results))
     cols = 2 if len(scenes) > 1 else 1
     rows = math.ceil(len(scenes) / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.6 * rows), squeeze=False)
     for ax in axes.flat[len(scenes):]:
         ax.set_visible(False)
-    return fig, list(axes.flat)
+    return fig, [(ax, scene, [r for r in results if r.spec.scene == scene])
+                 for ax, scene in zip(axes.flat, scenes)]
 
 
 def _axes(ax, scene, ylabel):
@@ -106,14 +109,12 @@ def _budget_lines(ax, mine, value, first, second, ringed, second_label=None):
 
 
 def penetration(results, path, steps):
-    scenes = list(dict.fromkeys(r.spec.scene for r in results))
-    fig, axes = _panels(scenes)
+    fig, panels = _panels(results)
 
     def value(r, what):
         return r.probed_max() if what == "max" else r.probed_mean()
 
-    for ax, scene in zip(axes, scenes):
-        mine = [r for r in results if r.spec.scene == scene]
+    for ax, scene, mine in panels:
         _budget_lines(ax, mine, value, "max", ("mean", "--"), ringed="mean")
         others = [r for r in mine if r.spec.seed != 1]
         for what, marker in (("max", "x"), ("mean", "+")):
@@ -127,14 +128,12 @@ def penetration(results, path, steps):
 
 
 def step_time(results, path, steps):
-    scenes = list(dict.fromkeys(r.spec.scene for r in results))
-    fig, axes = _panels(scenes)
+    fig, panels = _panels(results)
 
     def value(r, what):
         return r.ms_per_step() if what == "whole step" else r.frame_ms()
 
-    for ax, scene in zip(axes, scenes):
-        mine = [r for r in results if r.spec.scene == scene]
+    for ax, scene, mine in panels:
         _budget_lines(ax, mine, value, "whole step", ("adb pairs", ":"), ringed="whole step",
                       second_label="adb pairs only")
         _peer_lines(ax, mine, value, (("whole step", "-"),))

@@ -1,5 +1,5 @@
 // Test support: a btDiscreteDynamicsWorld with adb's algorithms that owns what it creates,
-// stepping, and a hash of the bodies' state for reproducibility checks.
+// stepping, a hash of the bodies' state for reproducibility checks, and a torus lying flat.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
@@ -11,6 +11,7 @@
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
+#include "adb/core/mesh_generators.h"
 
 namespace adb::test {
 
@@ -66,6 +67,15 @@ struct World {
   /// One fixed step of 1/60 s.
   void step() { world->stepSimulation(btScalar(1.0 / 60), 1, btScalar(1.0 / 60)); }
 };
+
+constexpr double kQuarterTurn = 1.5707963267948966;
+
+/// A torus lying flat: its axis along world y.
+inline TriangleMesh flatTorus(double radius, double tube) {
+  return gen::transformed(
+      gen::makeTorus(radius, tube, 32, 16),
+      Pose{Eigen::AngleAxisd(kQuarterTurn, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()});
+}
 
 /// FNV-1a over the bytes of every body's transform and velocities.
 inline std::uint64_t hashBodies(const std::vector<std::unique_ptr<btRigidBody>>& bodies) {

@@ -17,9 +17,8 @@
 namespace adb {
 namespace {
 
+using test::kQuarterTurn;
 using test::World;
-
-constexpr double kQuarterTurn = 1.5707963267948966;
 
 // A mixed pile: a plane floor, a static box ledge, tori (some as compound children, offset
 // from the body's frame), and spheres, boxes and capsules dropped among them.
@@ -61,29 +60,32 @@ struct PileRun {
   bool finite = true;
 };
 
-PileRun simulate(const FrameSettings& settings, int steps) {
+// Steps the scene `build` makes under `settings`, recording every step's statistics and
+// where the lowest dynamic body was.
+PileRun simulate(const FrameSettings& settings, int steps, void (*build)(World&)) {
   World w(test::Dispatch::Adb, settings);
-  addMixedPile(w);
+  build(w);
   PileRun run;
-  for (int i = 0; i < steps; ++i) {
-    w.step();
-    run.steps.push_back(w.adbDispatcher->lastFrameStats());
+  const auto lowestNow = [&] {
+    double lowest = std::numeric_limits<double>::infinity();
     for (const auto& b : w.bodies) {
       const btVector3& o = b->getWorldTransform().getOrigin();
       run.finite = run.finite && std::isfinite(o.length2());
-      if (b->getInvMass() > 0) run.lowest = std::min(run.lowest, double(o.y()));
+      if (b->getInvMass() > 0) lowest = std::min(lowest, double(o.y()));
     }
+    return lowest;
+  };
+  for (int i = 0; i < steps; ++i) {
+    w.step();
+    run.steps.push_back(w.adbDispatcher->lastFrameStats());
+    run.lowest = std::min(run.lowest, lowestNow());
   }
-  for (const auto& b : w.bodies) {
-    if (b->getInvMass() > 0) {
-      run.lowestAtEnd = std::min(run.lowestAtEnd, double(b->getWorldTransform().getOrigin().y()));
-    }
-  }
+  run.lowestAtEnd = lowestNow();
   return run;
 }
 
 TEST(BudgetAllPairs, EveryPairKindIsScheduledAndCompoundChildrenCount) {
-  const PileRun exact = simulate(FrameSettings{}, 240);
+  const PileRun exact = simulate(FrameSettings{}, 240, addMixedPile);
   std::uint32_t meshMesh = 0, others = 0;
   for (const FrameStats& s : exact.steps) {
     meshMesh += s.pairs;
@@ -102,7 +104,7 @@ TEST(BudgetAllPairs, EveryPairKindIsScheduledAndCompoundChildrenCount) {
 
 TEST(BudgetAllPairs, ANodePairBudgetHoldsAtP99WhateverThePairKinds) {
   // The budget: a quarter of what exact contacts need once the pile has formed.
-  const PileRun exact = simulate(FrameSettings{}, 240);
+  const PileRun exact = simulate(FrameSettings{}, 240, addMixedPile);
   std::uint64_t need = 0;
   for (std::size_t i = 120; i < exact.steps.size(); ++i) {
     need = std::max(need, exact.steps[i].neededNodePairs);
@@ -110,7 +112,7 @@ TEST(BudgetAllPairs, ANodePairBudgetHoldsAtP99WhateverThePairKinds) {
   ASSERT_GT(need, 400u);
   FrameSettings tight;
   tight.budgetNodePairs = need / 4;
-  const PileRun cut = simulate(tight, 240);
+  const PileRun cut = simulate(tight, 240, addMixedPile);
   std::vector<double> ratio;
   std::uint32_t kept = 0;
   for (const FrameStats& s : cut.steps) {
@@ -130,13 +132,9 @@ TEST(BudgetAllPairs, ANodePairBudgetHoldsAtP99WhateverThePairKinds) {
 
 // Eight knots resting apart on a btBoxShape floor (the way Bullet users build bins), and
 // two tori dropped on each other between them: one mesh-mesh pair, ten pairs with the world.
-PileRun simulateOnBoxFloor(const FrameSettings& settings, int steps) {
-  World w(test::Dispatch::Adb, settings);
+void addBoxFloorScene(World& w) {
   w.add(std::make_unique<btBoxShape>(btVector3(4, 0.25f, 4)), 0, btVector3(0, -0.25f, 0));
-  // A torus lying flat: its axis along world y.
-  const auto torus = MeshData::build(gen::transformed(
-      gen::makeTorus(0.4, 0.15, 32, 16),
-      Pose{Eigen::AngleAxisd(kQuarterTurn, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()}));
+  const auto torus = MeshData::build(test::flatTorus(0.4, 0.15));
   const auto knot = MeshData::build(gen::makeModel("knot", 2000));
   for (int i = 0; i < 8; ++i) {
     const double angle = i * kQuarterTurn / 2;
@@ -147,17 +145,6 @@ PileRun simulateOnBoxFloor(const FrameSettings& settings, int steps) {
     const btVector3 at(btScalar(0.1 * i), btScalar(0.3 + 0.35 * i), 0);
     w.add(torus, 1, at)->setActivationState(DISABLE_DEACTIVATION);
   }
-  PileRun run;
-  for (int i = 0; i < steps; ++i) {
-    w.step();
-    run.steps.push_back(w.adbDispatcher->lastFrameStats());
-    for (const auto& b : w.bodies) {
-      if (b->getInvMass() > 0) {
-        run.lowest = std::min(run.lowest, double(b->getWorldTransform().getOrigin().y()));
-      }
-    }
-  }
-  return run;
 }
 
 TEST(BudgetAllPairs, RestingPairsWithTheWorldLeaveABindingBudgetToTheMeshPairs) {
@@ -167,7 +154,7 @@ TEST(BudgetAllPairs, RestingPairsWithTheWorldLeaveABindingBudgetToTheMeshPairs) 
   // world whose mesh has barely moved since it last ran keeps its contacts, and the budget
   // goes to the pairs that changed.
   constexpr std::size_t kSettled = 150, kSteps = 240;
-  const PileRun exact = simulateOnBoxFloor(FrameSettings{}, kSteps);
+  const PileRun exact = simulate(FrameSettings{}, kSteps, addBoxFloorScene);
   double need = 0.0, exactWorld = 0.0;
   for (std::size_t i = kSettled; i < kSteps; ++i) {
     need += double(exact.steps[i].neededNodePairs);
@@ -177,7 +164,7 @@ TEST(BudgetAllPairs, RestingPairsWithTheWorldLeaveABindingBudgetToTheMeshPairs) 
   exactWorld /= double(kSteps - kSettled);
   FrameSettings tight;
   tight.budgetNodePairs = static_cast<std::uint64_t>(need / 4);
-  const PileRun cut = simulateOnBoxFloor(tight, kSteps);
+  const PileRun cut = simulate(tight, kSteps, addBoxFloorScene);
   double world = 0.0, kept = 0.0;
   for (std::size_t i = kSettled; i < kSteps; ++i) {
     world += double(cut.steps[i].otherNodePairs);

@@ -21,16 +21,9 @@
 namespace adb {
 namespace {
 
+using test::flatTorus;
+using test::kQuarterTurn;
 using test::World;
-
-constexpr double kQuarterTurn = 1.5707963267948966;
-
-// A torus lying flat: its axis along world y.
-TriangleMesh flatTorus(double radius, double tube) {
-  return gen::transformed(
-      gen::makeTorus(radius, tube, 32, 16),
-      Pose{Eigen::AngleAxisd(kQuarterTurn, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()});
-}
 
 std::shared_ptr<const MeshData> meshGround() {
   return MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4));

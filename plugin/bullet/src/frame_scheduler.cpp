@@ -260,6 +260,15 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   return work.nodePairs + work.triangleTests + work.pairsPopped;
 }
 
+// A whole pair's expected time: its last and a quarter more, or, never timed, its expected
+// work at the measured time per unit (a GJK pair costs far more per unit than a closed-form
+// one: its own time is the better estimate).
+double FrameScheduler::expectedWholeMicros(const ManifoldAlgorithm& algorithm) const {
+  if (algorithm.lastMicros() > 0.0) return 1.25 * algorithm.lastMicros();
+  return static_cast<double>(expectedCost(algorithm.lastWork(), kFirstWholeWork)) *
+         m_microsPerWholeUnit;
+}
+
 // Whether the budget is too small for every pair's expected cost: only then may a resting
 // pair keep its contacts (a budget never reached must not change the simulation).
 bool FrameScheduler::binding(const FrameSettings& settings) const {
@@ -267,10 +276,8 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
   std::uint64_t units = 0;
   double micros = 0.0;
   for (const DeferredPair& p : m_wholes) {
-    const std::uint64_t cost = expectedCost(p.algorithm->lastWork(), kFirstWholeWork);
-    units += cost;
-    micros += p.algorithm->lastMicros() > 0.0 ? 1.25 * p.algorithm->lastMicros()
-                                              : static_cast<double>(cost) * m_microsPerWholeUnit;
+    units += expectedCost(p.algorithm->lastWork(), kFirstWholeWork);
+    micros += expectedWholeMicros(*p.algorithm);
   }
   for (const DeferredPair& p : m_pairs) {
     const std::uint64_t cost = expectedCost(p.meshMesh().needed(), kFirstGrant);
@@ -349,11 +356,8 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   // Its cost last time and a quarter more (bodies settling into each other touch more
   // triangles step by step; at least a few nodes for a pair never run), in work and in time
   // (a GJK pair costs far more per unit than a closed-form one).
-  const std::uint64_t last = algorithm.lastWork();
-  const std::uint64_t expected = expectedCost(last, kFirstWholeWork);
-  const double expectedMicros = algorithm.lastMicros() > 0.0
-                                    ? 1.25 * algorithm.lastMicros()
-                                    : static_cast<double>(expected) * m_microsPerWholeUnit;
+  const std::uint64_t expected = expectedCost(algorithm.lastWork(), kFirstWholeWork);
+  const double expectedMicros = expectedWholeMicros(algorithm);
   if (expected > shareUnits || expectedMicros > microsShare) {
     // A pair expected to cost more than the whole budget would never run again (the
     // estimate is re-measured only by running), and its kept contacts would not hold a
@@ -444,7 +448,6 @@ void FrameScheduler::refine(const FrameSettings& settings) {
   }
   runWholesLeft(settings);
 }
-
 
 // Runs the whole pairs not run yet, in their order, while what is left covers them.
 void FrameScheduler::runWholesLeft(const FrameSettings& settings) {

@@ -36,7 +36,7 @@ struct DeferredPair {
   int partId0, index0, partId1, index1;
   std::uint32_t sequence;  // order of the dispatch: ties in the whole pairs' order
   // A whole pair: how far its mesh moved against the other body since it last ran (its
-  // kept contacts' error), infinite if it never ran. The stalest run first.
+  // kept contacts' error), infinite if it never ran. The most moved run first.
   btScalar motion = 0;
   // Scheduling state of this step.
   std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
@@ -83,6 +83,7 @@ class FrameScheduler {
 
   void firstPass(const FrameSettings& settings);
   bool binding(const FrameSettings& settings) const;
+  double expectedWholeMicros(const ManifoldAlgorithm& algorithm) const;
   void refine(const FrameSettings& settings);
   /// Collides a pair that is not refined (mesh against a convex shape, a plane or another
   /// concave shape) when its last cost fits in `share` node pairs and `microsShare`, or when

@@ -4,15 +4,20 @@
 //
 // Policy (docs/bullet-budget.md has the measurements): pairs with a static body first, then
 // the rest. Pairs that are not mesh-mesh (a mesh against a convex shape, a plane or another
-// concave shape) run whole or not at all: those with a static body may take all that is
-// left, the others an even share; one that does not fit keeps its last contacts (refreshed
-// for the new poses) and goes first next step, and one expected to cost more than the whole
-// budget runs every third step regardless (its estimate is only re-measured by running). Each mesh-mesh pair is given what it needed
-// last step, at most an even share of what is left; then, while budget is left, the pair
-// whose contacts are least complete gets as much again, resumed where it stopped. A pair is
-// decided when its traversal completed (exact contacts, sampled per contact region) or
-// reached the quality target (kMin node pairs above pMin, which needs the paper's
-// best-first traversal; otherwise pairs run depth first). Pairs the budget cut get plausible
+// concave shape) run whole or not at all, those whose mesh moved most since they last ran
+// first: those with a static body may take all that is left, the others an even share; one
+// that does not fit keeps its last contacts (refreshed for the new poses). When the budget is
+// smaller than every pair's expected cost, a pair with a static body whose mesh has barely
+// moved keeps its contacts without running. One expected to cost more than the whole budget
+// runs regardless (its estimate is only re-measured by running) every third step, or at once
+// when its mesh has moved past the contact breaking threshold. Each mesh-mesh pair is given
+// what it needed last step, at most an even share of what is left; then, while budget is
+// left, the pair whose contacts are least complete gets as much again, resumed where it
+// stopped. Mesh-box contacts are sampled: each of 16 regions of the tree gives its deepest
+// points (adb/core/box_query.h, forEachDeepestTriangleNear). A mesh-mesh pair is decided
+// when its traversal completed (exact contacts, sampled per contact region) or reached the
+// quality target (kMin node pairs above pMin, which needs the paper's best-first traversal;
+// otherwise pairs run depth first). Pairs the budget cut get plausible
 // contacts from their unresolved node pairs with probability >= pAccept. A time budget holds
 // back the contact writing still to come and a margin that follows the overshoot's peaks.
 // With a node-pair budget, a step is reproducible bit for bit. Meshes inside
