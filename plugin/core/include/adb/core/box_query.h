@@ -172,11 +172,11 @@ std::size_t forEachDeepestTriangleNear(const AdbTree& tree, const OrientedBox& s
   const auto triangleBound = [&](std::uint32_t t) {
     double deepest = std::numeric_limits<double>::infinity();
     const Triangle& tri = tree.triangles()[t];
+    const Vec3 p0 = vertices[tri[0]] - solid.centre, p1 = vertices[tri[1]] - solid.centre,
+               p2 = vertices[tri[2]] - solid.centre;
     for (int k = 0; k < 3; ++k) {
       const Vec3 axis = solid.axes.col(k);
-      const double q0 = axis.dot(vertices[tri[0]] - solid.centre);
-      const double q1 = axis.dot(vertices[tri[1]] - solid.centre);
-      const double q2 = axis.dot(vertices[tri[2]] - solid.centre);
+      const double q0 = axis.dot(p0), q1 = axis.dot(p1), q2 = axis.dot(p2);
       const double nearest = std::max({0.0, std::min({q0, q1, q2}), -std::max({q0, q1, q2})});
       deepest = std::min(deepest, solid.half[k] - nearest);
     }
