@@ -12,7 +12,9 @@ packages=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   libfcl-dev               # peer in the study, oracle in tests
-  nlohmann-json3-dev
+  nlohmann-json3-dev       # scene files
+  libcli11-dev             # every executable's command line
+  libpng-dev               # adb-demo --render frames
   python3-matplotlib       # plots of the study
 )
 
