@@ -1,319 +1,167 @@
-// adb-demo: runs the pile scene headless (generated tori, gears and torus knots, or copies of
-// mesh files, dropped into a bin) with adb's MeshShape, with Bullet's GImpact, or with a convex
-// decomposition (Bullet's HACD) of the same meshes, prints a line every N steps and a final
-// table, and writes the per-step figures as CSV with --out.
+// adb-demo: runs scenes headless.
 //
-//   build/bin/adb-demo [--backend adb|gimpact|convex] [--bodies N] [--triangles N] [--steps N]
-//                      [--every N] [--seed S] [--out DIR] [--floor mesh|box|plane]
-//                      [--mesh FILE]...
-//                      [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K]
-//                      [--p-accept P] [--no-soften]
-#include <algorithm>
-#include <cmath>
+//   build/bin/adb-demo --scene FILE [--steps N] [--out DIR] [--render] [--backend adb|exact|gimpact]
+//                      [--compare] [--budget-us US | --budget-pairs N] ...
+//   build/bin/adb-demo [--mesh FILE]... [--bodies N] [--triangles N] [--floor mesh|box|plane]
+//                      [--backend adb|gimpact|convex] ...
+//
+// With --scene, a scene file (docs/scenes.md) is built with only the effects it asks for and
+// stepped (adb::scene); --out writes steps.csv, events.jsonl and summary.json, --render frames
+// and a movie, --compare runs it with adb, exact contacts and GImpact side by side (make demo).
+// Without it, the pile: generated bodies or copies of mesh files dropped into a bin, with the
+// figures the budget sweep reads.
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <memory>
-#include <string>
-#include <vector>
 
 #include "adb/io/mesh_file.h"
-#include "scene/pile_scene.h"
+#include "pile/pile_run.h"
+#include "scene_run/scene_run.h"
 
 namespace {
 
 struct Options {
-  adb::demo::SceneSettings scene;
-  int steps = 300;
-  int every = 30;
-  int probeEvery = 0;  // measure body-body penetration from the geometry every N steps
-  std::string out;
+  adb::demo::SceneRunOptions scene;
+  adb::demo::PileRunOptions pile;
+  std::vector<std::string> meshes;
+  std::string floor = "mesh";
+  double budgetMicros = 0;
+  std::uint64_t budgetPairs = 0;
+  double pMin = 0, pAccept = 0;
+  int kMin = 0;
 };
 
-[[noreturn]] void usage(int code) {
-  std::fprintf(code ? stderr : stdout,
-               "usage: adb-demo [--backend adb|gimpact|convex] [--bodies N] [--triangles N] "
-               "[--steps N] [--every N] [--seed S] [--out DIR]\n"
-               "                [--floor mesh|box|plane] [--mesh FILE]...\n"
-               "                [--budget-us US] [--budget-pairs N] [--p-min P] [--k-min K] "
-               "[--p-accept P] [--no-soften]\n"
-               "  --backend       adb's MeshShape (default), Bullet's GImpact, or each mesh "
-               "decomposed into\n"
-               "                  convex hulls by Bullet's HACD (btCompoundShape of "
-               "btConvexHullShape)\n"
-               "  --floor         the bin: box meshes (default), btBoxShape floor and walls, or a "
-               "btStaticPlaneShape\n"
-               "                  floor between btBoxShape walls; the same for every backend\n"
-               "  --mesh          bodies are copies of this mesh file (any format assimp reads), "
-               "scaled to 0.8\n"
-               "                  across; repeat to cycle through several (default: generated "
-               "tori, gears, knots)\n"
-               "  --budget-us     wall-clock budget per step for all mesh-mesh pairs (default "
-               "none)\n"
-               "  --budget-pairs  node pairs per step for all mesh-mesh pairs: reproducible\n"
-               "  --p-min/--k-min stop refining a pair at k_min node pairs above p_min "
-               "(default k_min 0: never)\n"
-               "  --p-accept      unresolved node pairs at or above this become plausible "
-               "contacts (0.9)\n"
-               "  --no-soften     plausible contacts push as hard as exact ones\n"
-               "  --probe-every N measure body-body penetration from the geometry every N "
-               "steps (untimed;\n"
-               "                  the same measure for every backend; default 0: off)\n");
-  std::exit(code);
+void addOptions(CLI::App& app, Options& o) {
+  app.add_option("--scene", o.scene.scene, "a scene file (docs/scenes.md); without it, the pile")
+      ->check(CLI::ExistingFile);
+  app.add_option("--backend", o.scene.backend,
+                 "adb (MeshShape under the budget; default), exact (MeshShape, no budget), "
+                 "gimpact (Bullet's GImpact); the pile also takes convex (Bullet's HACD hulls)")
+      ->check(CLI::IsMember({"adb", "exact", "gimpact", "convex"}));
+  app.add_option("--steps", o.pile.steps, "steps to run (a scene's default: its world.steps)")
+      ->check(CLI::Range(1, 100000000));
+  app.add_option("--every", o.pile.every, "print a line every N steps")->check(CLI::PositiveNumber);
+  app.add_option("--out", o.pile.out, "folder for steps.csv (and a scene's events.jsonl, "
+                                      "summary.json, frames/, movie.mp4)");
+  app.add_option("--probe-every", o.pile.probeEvery,
+                 "measure body-body penetration from the geometry every N steps (untimed; the "
+                 "same measure for every backend; 0: off)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--budget-us", o.budgetMicros,
+                 "wall-clock budget per step for every pair with an adb mesh (default none; "
+                 "overrides a scene's)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--budget-pairs", o.budgetPairs,
+                 "node pairs per step for every pair with an adb mesh: reproducible");
+  app.add_option("--p-min", o.pMin, "quality target: probability above which a node pair counts")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--k-min", o.kMin,
+                 "stop refining a pair at k_min node pairs above p_min (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--p-accept", o.pAccept,
+                 "unresolved node pairs at or above it become plausible contacts (0.9)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--no-soften", o.scene.noSoften, "plausible contacts push as hard as exact ones");
+
+  app.add_flag("--render", o.scene.render, "scene: write DIR/frames/NNNNN.png and DIR/movie.mp4 "
+                                           "(with ffmpeg); needs --out");
+  app.add_flag("--compare", o.scene.compare,
+               "scene: run it with adb, exact and gimpact and compare (DIR/comparison.png "
+               "with --render)");
+  app.add_option("--width", o.scene.width, "frame width in pixels")->check(CLI::Range(16, 8192));
+  app.add_option("--height", o.scene.height, "frame height in pixels")->check(CLI::Range(16, 8192));
+  app.add_option("--frames-every", o.scene.framesEvery,
+                 "a frame every N steps (default: about 30 per simulated second)")
+      ->check(CLI::PositiveNumber);
+
+  app.add_option("--mesh", o.meshes, "pile: bodies are copies of this mesh file (any format "
+                                     "assimp reads), scaled to 0.8 across; repeat to cycle")
+      ->check(CLI::ExistingFile);
+  app.add_option("--bodies", o.pile.settings.bodies, "pile: bodies (24)")->check(CLI::PositiveNumber);
+  app.add_option("--triangles", o.pile.settings.trianglesPerBody,
+                 "pile: about this many triangles per generated body (1500)");
+  app.add_option("--seed", o.pile.settings.seed, "pile: random seed of the bodies' poses");
+  app.add_option("--floor", o.floor, "pile: the bin: box meshes (default), btBoxShape floor and "
+                                     "walls, or a btStaticPlaneShape floor between box walls")
+      ->check(CLI::IsMember({"mesh", "box", "plane"}));
 }
 
-// A number that must be all of `value`: "12x" is an error, not 12.
-double number(const std::string& flag, const std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (value.empty() || *end != '\0' || std::isnan(v)) {
-    std::fprintf(stderr, "adb-demo: %s needs a number, got '%s'\n", flag.c_str(), value.c_str());
-    std::exit(2);
+int runPile(const CLI::App& app, Options& o) {
+  using adb::demo::Backend;
+  adb::demo::PileRunOptions& p = o.pile;
+  if (o.scene.backend == "exact") {
+    std::fprintf(stderr, "adb-demo: --backend exact is for scenes; the pile's adb backend "
+                         "without a budget is exact\n");
+    return 2;
   }
-  return v;
+  if (o.scene.render || o.scene.compare) {
+    std::fprintf(stderr, "adb-demo: --render and --compare need --scene\n");
+    return 2;
+  }
+  p.settings.backend = o.scene.backend == "gimpact"  ? Backend::GImpact
+                       : o.scene.backend == "convex" ? Backend::Convex
+                                                     : Backend::Adb;
+  p.settings.floor = o.floor == "box"     ? adb::demo::Floor::Box
+                     : o.floor == "plane" ? adb::demo::Floor::Plane
+                                          : adb::demo::Floor::Mesh;
+  adb::FrameSettings& f = p.settings.frame;
+  if (app.count("--budget-us")) f.budgetMicros = o.budgetMicros;
+  if (app.count("--budget-pairs")) f.budgetNodePairs = o.budgetPairs;
+  if (app.count("--p-min")) f.pMin = o.pMin;
+  if (app.count("--k-min")) f.kMin = o.kMin;
+  if (app.count("--p-accept")) f.pAccept = o.pAccept;
+  f.softenPlausible = !o.scene.noSoften;
+  try {
+    for (const std::string& file : o.meshes) p.settings.meshes.push_back(adb::io::loadMesh(file));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "adb-demo: %s\n", e.what());
+    return 2;
+  }
+  return adb::demo::runPile(p);
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help") usage(0);
-    if (arg == "--no-soften") {
-      o.scene.frame.softenPlausible = false;
-      continue;
+int runScene(const CLI::App& app, Options& o) {
+  adb::demo::SceneRunOptions& s = o.scene;
+  if (o.scene.backend == "convex") {
+    std::fprintf(stderr, "adb-demo: --backend convex is for the pile, not scenes\n");
+    return 2;
+  }
+  for (const char* pileOnly : {"--mesh", "--bodies", "--triangles", "--seed", "--floor"}) {
+    if (app.count(pileOnly)) {
+      std::fprintf(stderr, "adb-demo: %s is for the pile, not with --scene\n", pileOnly);
+      return 2;
     }
-    if (i + 1 >= argc) usage(2);
-    const std::string value = argv[++i];
-    if (arg == "--backend" && (value == "adb" || value == "gimpact" || value == "convex")) {
-      o.scene.backend = value == "adb"       ? adb::demo::Backend::Adb
-                        : value == "gimpact" ? adb::demo::Backend::GImpact
-                                             : adb::demo::Backend::Convex;
-    } else if (arg == "--bodies") {
-      o.scene.bodies = std::max(1, std::atoi(value.c_str()));
-    } else if (arg == "--triangles") {
-      o.scene.trianglesPerBody = std::strtoull(value.c_str(), nullptr, 10);
-    } else if (arg == "--steps") {
-      o.steps = std::max(1, std::atoi(value.c_str()));
-    } else if (arg == "--every") {
-      o.every = std::max(1, std::atoi(value.c_str()));
-    } else if (arg == "--seed") {
-      o.scene.seed = std::strtoull(value.c_str(), nullptr, 10);
-    } else if (arg == "--floor" && (value == "mesh" || value == "box" || value == "plane")) {
-      o.scene.floor = value == "mesh"  ? adb::demo::Floor::Mesh
-                      : value == "box" ? adb::demo::Floor::Box
-                                       : adb::demo::Floor::Plane;
-    } else if (arg == "--mesh") {
-      try {
-        o.scene.meshes.push_back(adb::io::loadMesh(value));
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "adb-demo: %s\n", e.what());
-        std::exit(2);
-      }
-    } else if (arg == "--probe-every") {
-      o.probeEvery = std::max(0, std::atoi(value.c_str()));
-    } else if (arg == "--out") {
-      o.out = value;
-    } else if (arg == "--budget-us") {
-      o.scene.frame.budgetMicros = number(arg, value);
-    } else if (arg == "--budget-pairs") {
-      o.scene.frame.budgetNodePairs = static_cast<std::uint64_t>(std::max(0.0, number(arg, value)));
-    } else if (arg == "--p-min") {
-      o.scene.frame.pMin = number(arg, value);
-    } else if (arg == "--k-min") {
-      o.scene.frame.kMin = static_cast<int>(number(arg, value));
-    } else if (arg == "--p-accept") {
-      o.scene.frame.pAccept = number(arg, value);
-    } else {
-      std::fprintf(stderr, "adb-demo: bad flag or value: %s %s\n", arg.c_str(), value.c_str());
-      usage(2);
-    }
   }
-  return o;
-}
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
-}
-
-std::string budgetText(const adb::FrameSettings& f) {
-  std::string text;
-  if (std::isfinite(f.budgetMicros)) text += std::to_string(static_cast<long>(f.budgetMicros)) + " us";
-  if (f.budgetNodePairs != adb::FrameSettings{}.budgetNodePairs) {
-    text += (text.empty() ? "" : " and ") + std::to_string(f.budgetNodePairs) + " node pairs";
+  if (s.render && o.pile.out.empty()) {
+    std::fprintf(stderr, "adb-demo: --render needs --out DIR\n");
+    return 2;
   }
-  return text.empty() ? "none" : text + " per step";
-}
-
-void writeCsvHeader(std::ofstream& csv) {
-  csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y,"
-         "frame_us,contact_us,pairs,exact_pairs,quality_pairs,cut_pairs,node_pairs,exact_contacts,"
-         "plausible_contacts,mean_confidence,worst_confidence,body_penetration,bin_penetration,"
-         "floor_penetration,floor_penetration_relative,lost,probed_depth,probed_relative,probed_mean,needed_node_pairs,mean_completeness,worst_completeness,other_node_pairs\n";
-}
-
-void writeCsvRow(std::ofstream& csv, int step, const adb::demo::StepStats& s) {
-  const adb::FrameStats& f = s.frame;
-  csv << step << ',' << s.seconds << ',' << s.contacts << ',' << s.maxPenetration << ','
-      << s.kinetic << ',' << s.energy << ',' << s.atRest << ',' << s.lowestY << ',' << f.micros
-      << ',' << f.contactMicros << ',' << f.pairs << ',' << f.exactPairs << ',' << f.qualityPairs << ',' << f.cutPairs
-      << ',' << f.nodePairs << ',' << f.exactContacts << ',' << f.plausibleContacts << ','
-      << f.meanConfidence << ',' << f.worstConfidence << ',' << s.bodyPenetration << ','
-      << s.binPenetration << ',' << s.floorPenetration << ',' << s.floorPenetrationRelative
-      << ',' << s.lost << ',';
-  if (s.probedDepth >= 0) {
-    csv << s.probedDepth << ',' << s.probedRelative << ',' << s.probedMean;
-  } else {
-    csv << ",,";
-  }
-  csv << ',' << f.neededNodePairs << ',' << f.meanCompleteness << ',' << f.worstCompleteness
-      << ',' << f.otherNodePairs << '\n';
-}
-
-struct Totals {
-  std::vector<double> stepSeconds, frameMicros;
-  double worstPenetration = 0, lowest = 1e300, confidenceSum = 0, worstConfidence = 1;
-  double worstBody = 0, worstBin = 0, worstFloor = 0, worstFloorRelative = 0;
-  double worstProbed = -1, worstProbedRelative = -1, probedMeanSum = 0;
-  int probes = 0;
-  int mostLost = 0;
-  std::uint64_t pairs = 0, cutPairs = 0, exactContacts = 0, plausibleContacts = 0;
-
-  void add(const adb::demo::StepStats& s) {
-    stepSeconds.push_back(s.seconds);
-    frameMicros.push_back(s.frame.micros);
-    worstPenetration = std::max(worstPenetration, s.maxPenetration);
-    lowest = std::min(lowest, s.lowestY);
-    worstBody = std::max(worstBody, s.bodyPenetration);
-    worstBin = std::max(worstBin, s.binPenetration);
-    worstFloor = std::max(worstFloor, s.floorPenetration);
-    worstFloorRelative = std::max(worstFloorRelative, s.floorPenetrationRelative);
-    worstProbed = std::max(worstProbed, s.probedDepth);
-    worstProbedRelative = std::max(worstProbedRelative, s.probedRelative);
-    mostLost = std::max(mostLost, s.lost);
-    if (s.probedMean >= 0) {
-      probedMeanSum += s.probedMean;
-      ++probes;
-    }
-    confidenceSum += s.frame.meanConfidence;
-    worstConfidence = std::min(worstConfidence, s.frame.worstConfidence);
-    pairs += s.frame.pairs;
-    cutPairs += s.frame.cutPairs;
-    exactContacts += s.frame.exactContacts;
-    plausibleContacts += s.frame.plausibleContacts;
-  }
-};
-
-double mean(const std::vector<double>& v) {
-  double sum = 0;
-  for (double x : v) sum += x;
-  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  if (app.count("--steps")) s.steps = o.pile.steps;
+  if (app.count("--every")) s.every = o.pile.every;
+  s.out = o.pile.out;
+  s.probeEvery = o.pile.probeEvery;
+  if (app.count("--budget-us")) s.budgetMicros = o.budgetMicros;
+  if (app.count("--budget-pairs")) s.budgetNodePairs = o.budgetPairs;
+  if (app.count("--p-min")) s.pMin = o.pMin;
+  if (app.count("--k-min")) s.kMin = o.kMin;
+  if (app.count("--p-accept")) s.pAccept = o.pAccept;
+  return adb::demo::runScene(s);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
-  const bool adbBackend = o.scene.backend == adb::demo::Backend::Adb;
-  const char* backend = adbBackend                                        ? "adb"
-                        : o.scene.backend == adb::demo::Backend::GImpact ? "GImpact"
-                                                                         : "convex (HACD)";
-  std::unique_ptr<adb::demo::PileScene> made;
+  CLI::App app{"adb-demo: scenes headless (--scene FILE), or a pile of generated bodies or mesh "
+               "files in a bin"};
+  Options o;
+  addOptions(app, o);
   try {
-    made = std::make_unique<adb::demo::PileScene>(o.scene);
-  } catch (const std::exception& e) {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "adb-demo: %s\n", e.what());
     return 2;
   }
-  adb::demo::PileScene& scene = *made;
-  const char* floors[] = {"box meshes", "btBoxShape floor and walls",
-                          "btStaticPlaneShape floor, btBoxShape walls"};
-  std::printf("pile scene: %d bodies, %zu triangles in all, backend %s, %d steps of 1/60 s\n"
-              "bin: %s\n",
-              scene.bodyCount(), scene.triangleCount(), backend, o.steps,
-              floors[static_cast<int>(o.scene.floor)]);
-  if (o.scene.backend == adb::demo::Backend::Convex) {
-    const adb::demo::DecompositionReport& d = scene.decomposition();
-    std::string perKind, volumes;
-    for (std::size_t k = 0; k < d.hullsPerKind.size(); ++k) {
-      char ratio[32];
-      std::snprintf(ratio, sizeof ratio, d.volumeRatio[k] > 0 ? "%.2f" : "n/a",
-                    d.volumeRatio[k]);
-      perKind += (k ? ", " : "") + std::to_string(d.hullsPerKind[k]);
-      volumes += (k ? ", " : "") + std::string(ratio);
-    }
-    std::printf("convex decomposition (HACD): %zu hulls over %zu meshes (%s), prepared in %.2f s;"
-                " hulls' volume / mesh volume: %s\n",
-                d.hulls, d.hullsPerKind.size(), perKind.c_str(), d.seconds, volumes.c_str());
-  }
-  if (adbBackend) {
-    const adb::FrameSettings& f = o.scene.frame;
-    std::printf("budget %s, p_min %.3g, k_min %d%s, p_accept %.3g%s\n", budgetText(f).c_str(),
-                f.pMin, f.kMin, f.kMin == 0 ? " (never stop on quality)" : "", f.pAccept,
-                f.softenPlausible ? ", plausible contacts softened" : "");
-  }
-  std::printf("\n%6s %9s %9s %8s %6s %5s %9s %10s %10s %9s %8s\n", "step", "ms/step",
-              "pairs us", "contacts", "pairs", "cut", "conf.", "max pen.", "floor pen.", "energy",
-              "at rest");
-
-  std::ofstream csv;
-  if (!o.out.empty()) {
-    std::filesystem::create_directories(o.out);
-    csv.open(o.out + "/steps.csv");
-    writeCsvHeader(csv);
-  }
-  Totals totals;
-  adb::demo::StepStats last;
-  for (int step = 1; step <= o.steps; ++step) {
-    last = scene.step();
-    if (o.probeEvery > 0 && (step % o.probeEvery == 0 || step == o.steps)) scene.probe(last);
-    totals.add(last);
-    if (csv) writeCsvRow(csv, step, last);
-    if (step % o.every == 0 || step == o.steps) {
-      std::printf("%6d %9.3f %9.0f %8d %6u %5u %9.4f %10.4f %10.4f %9.3f %5d/%d\n", step,
-                  last.seconds * 1e3, last.frame.micros, last.contacts, last.frame.pairs,
-                  last.frame.cutPairs, last.frame.meanConfidence, last.maxPenetration,
-                  last.floorPenetration, last.energy, last.atRest, scene.bodyCount());
-      std::fflush(stdout);
-    }
-  }
-  std::printf("\n| backend | steps | mean ms/step | p99 ms/step | mesh pairs: mean us | p99 us | "
-              "pairs cut | contacts exact/plausible | mean conf. | worst conf. | "
-              "max penetration | lowest centre | energy (last) | at rest (last) |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  std::printf("| %s | %d | %.3f | %.3f | %.0f | %.0f | %llu/%llu | %llu/%llu | %.4f | %.4f | "
-              "%.4f | %.3f | %.3f | %d/%d |\n",
-              backend, o.steps, mean(totals.stepSeconds) * 1e3,
-              percentile(totals.stepSeconds, 0.99) * 1e3, mean(totals.frameMicros),
-              percentile(totals.frameMicros, 0.99),
-              static_cast<unsigned long long>(totals.cutPairs),
-              static_cast<unsigned long long>(totals.pairs),
-              static_cast<unsigned long long>(totals.exactContacts),
-              static_cast<unsigned long long>(totals.plausibleContacts),
-              totals.confidenceSum / static_cast<double>(o.steps), totals.worstConfidence,
-              totals.worstPenetration, totals.lowest, last.energy, last.atRest,
-              scene.bodyCount());
-  // Penetrations apart: contacts between bodies, contacts with the bin, and the floor's
-  // by geometry (lowest vertex below y = 0; relative: over the body's bounding-box diagonal).
-  std::printf("\n| max pen. body-body | max pen. body-bin | floor pen. max | floor pen. max "
-              "/ body size | floor pen. (last) | floor pen. (last) / body size |\n"
-              "|---|---|---|---|---|---|\n"
-              "| %.4f | %.4f | %.4f | %.2f %% | %.4f | %.2f %% |\n",
-              totals.worstBody, totals.worstBin, totals.worstFloor,
-              totals.worstFloorRelative * 100, last.floorPenetration,
-              last.floorPenetrationRelative * 100);
-  std::printf("\nbodies lost (centre out of the bin): %d at most, %d at the end\n",
-              totals.mostLost, last.lost);
-  if (totals.worstProbed >= 0) {
-    std::printf("body-body penetration from the geometry (every %d steps): max %.4f "
-                "(%.2f %% of a body's size), at the end %.4f (%.2f %%); each body's deepest, "
-                "mean over bodies and probes %.4f\n",
-                o.probeEvery, totals.worstProbed, totals.worstProbedRelative * 100,
-                last.probedDepth, last.probedRelative * 100,
-                totals.probedMeanSum / std::max(1, totals.probes));
-  }
-  if (csv) std::printf("\nper-step figures: %s/steps.csv\n", o.out.c_str());
-  // Below the floor (y = 0) by more than a body means one fell through: say so in the exit.
-  return totals.lowest < -0.5 ? 1 : 0;
+  return o.scene.scene.empty() ? runPile(app, o) : runScene(app, o);
 }

@@ -28,7 +28,7 @@
 
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/mesh_generators.h"
-#include "common/triangle_arrays.h"
+#include "adb/bullet/triangle_arrays.h"
 
 namespace {
 
@@ -60,7 +60,7 @@ struct World {
 /// The mesh as both shapes, and the batch of casts through its box. Built once per argument.
 struct Scene {
   adb::TriangleMesh mesh;
-  adb::demo::TriangleArrays arrays;
+  adb::TriangleArrays arrays;
   adb::MeshShape adbShape;
   btBvhTriangleMeshShape bvhShape;
   World adb{&adbShape}, bvh{&bvhShape};

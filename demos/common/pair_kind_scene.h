@@ -15,7 +15,7 @@
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/mesh.h"
-#include "triangle_arrays.h"
+#include "adb/bullet/triangle_arrays.h"
 
 namespace adb::demo {
 

@@ -24,7 +24,7 @@
 #include "model_loader.h"
 #include "options.h"
 #include "plots.h"
-#include "progress.h"
+#include "common/progress.h"
 #include "query_csv.h"
 #include "report.h"
 #include "study.h"
@@ -62,7 +62,7 @@ int run(const Options& o) {
   auto tree = std::make_shared<SharedTree>();
   std::vector<std::unique_ptr<Method>> methods = makeMethods(o, tree);
   QueryCsv csv(o.outDir + "/queries.csv");
-  Progress progress(queriesPerModel(o, methods.size()) * o.sources.size());
+  adb::demo::Progress progress(queriesPerModel(o, methods.size()) * o.sources.size(), "queries");
   StudyContext context{o, methods, csv, progress};
   std::vector<ModelResult> done;
   writeReports(o, done);  // headers only: the files exist even if the first model fails

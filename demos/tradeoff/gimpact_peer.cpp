@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "adb/bullet/precision.h"  // fails to compile at a Bullet precision other than adb's
-#include "common/triangle_arrays.h"
+#include "adb/bullet/triangle_arrays.h"
 
 namespace adb::tradeoff {
 namespace {
@@ -45,7 +45,7 @@ struct GimpactPeer::Impl {
   btCollisionDispatcher dispatcher{&configuration};
   btDispatcherInfo dispatchInfo;
   // GImpact reads the mesh through this interface: the arrays must outlive the shape.
-  std::unique_ptr<demo::TriangleArrays> arrays;  // what the shape reads: outlives it
+  std::unique_ptr<TriangleArrays> arrays;  // what the shape reads: outlives it
   std::unique_ptr<btGImpactMeshShape> shape;
   btCollisionObject objectA, objectB;
   btCollisionAlgorithm* algorithm = nullptr;
@@ -64,7 +64,7 @@ struct GimpactPeer::Impl {
   void buildShape(const TriangleMesh& mesh) {
     releaseAlgorithm();
     shape.reset();
-    arrays = std::make_unique<demo::TriangleArrays>(mesh);
+    arrays = std::make_unique<TriangleArrays>(mesh);
     shape = std::make_unique<btGImpactMeshShape>(arrays->array.get());
     shape->setMargin(0);
     shape->updateBound();  // builds the box tree once

@@ -10,7 +10,7 @@
 
 #include "method.h"
 #include "options.h"
-#include "progress.h"
+#include "common/progress.h"
 #include "query_csv.h"
 #include "results.h"
 
@@ -20,7 +20,7 @@ struct StudyContext {
   const Options& options;
   std::vector<std::unique_ptr<Method>>& methods;
   QueryCsv& csv;
-  Progress& progress;
+  demo::Progress& progress;
 };
 
 /// Runs the study of one model (the cell histogram is added by the caller).

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/triangle_arrays.h"  // demo support: TriangleMesh -> Bullet arrays
+#include "adb/bullet/triangle_arrays.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/core/benchmark_poses.h"
 #include "adb/core/mesh_generators.h"
@@ -50,7 +50,7 @@ struct TwoWorlds {
     btCollisionObject object;
   };
   std::shared_ptr<const MeshData> data;
-  demo::TriangleArrays arrays;
+  TriangleArrays arrays;
   One adb, bvh;
 
   TwoWorlds(TriangleMesh mesh, const btTransform& pose)

@@ -1,4 +1,4 @@
-// The demo's penetration probe (demos/scene/penetration_probe.h) against closed forms: it is
+// The penetration probe (adb/scene/penetration_probe.h) against closed forms: it is
 // the measure the budget's plausibility is judged by, so it must be right.
 #include <gtest/gtest.h>
 
@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "adb/core/mesh_generators.h"
-#include "scene/penetration_probe.h"
+#include "adb/scene/penetration_probe.h"
 
-namespace adb::demo {
+namespace adb::scene {
 namespace {
 
 constexpr double kMajor = 0.35, kMinor = 0.12;
@@ -71,4 +71,4 @@ TEST(PenetrationProbe, TwoToriPushedTogetherAreAsDeepAsTheirOverlap) {
 }
 
 }  // namespace
-}  // namespace adb::demo
+}  // namespace adb::scene

@@ -47,6 +47,10 @@ void Dispatcher::setFrameSettings(const FrameSettings& s) {
 
 const FrameStats& Dispatcher::lastFrameStats() const { return m_scheduler->stats(); }
 
+void Dispatcher::lastMeshPairs(std::vector<MeshPairReport>& out) const {
+  m_scheduler->meshPairs(out);
+}
+
 void Dispatcher::setBadPoseCallback(std::function<void(const BadPose&)> callback) {
   m_scheduler->setBadPoseCallback(std::move(callback));
 }

@@ -477,6 +477,24 @@ double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settin
   return micros;
 }
 
+namespace {
+MeshPairReport::Outcome outcomeOf(StopReason stop) {
+  if (stop == StopReason::Completed || stop == StopReason::WitnessesFull) {
+    return MeshPairReport::Outcome::Exact;
+  }
+  return stop == StopReason::QualityReached ? MeshPairReport::Outcome::Quality
+                                            : MeshPairReport::Outcome::Cut;
+}
+}  // namespace
+
+void FrameScheduler::meshPairs(std::vector<MeshPairReport>& out) const {
+  out.clear();
+  for (const DeferredPair& pair : m_pairs) {
+    out.push_back(MeshPairReport{pair.object0, pair.object1, outcomeOf(pair.stop),
+                                 pair.confidence, pair.completeness});
+  }
+}
+
 // The pairs still unwritten (those the budget cut), then the step's statistics.
 void FrameScheduler::writeContacts(const FrameSettings& settings) {
   const double early = m_stats.contactMicros;
@@ -499,12 +517,10 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
     m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
     completenessSum += pair.completeness;
     m_stats.worstCompleteness = std::min(m_stats.worstCompleteness, pair.completeness);
-    if (pair.stop == StopReason::Completed || pair.stop == StopReason::WitnessesFull) {
-      ++m_stats.exactPairs;
-    } else if (pair.stop == StopReason::QualityReached) {
-      ++m_stats.qualityPairs;
-    } else {
-      ++m_stats.cutPairs;
+    switch (outcomeOf(pair.stop)) {
+      case MeshPairReport::Outcome::Exact: ++m_stats.exactPairs; break;
+      case MeshPairReport::Outcome::Quality: ++m_stats.qualityPairs; break;
+      case MeshPairReport::Outcome::Cut: ++m_stats.cutPairs; break;
     }
   }
   if (!m_pairs.empty()) {

@@ -68,6 +68,8 @@ class FrameScheduler {
   /// Spends the budget across the noted pairs, writes their manifolds, ends the step.
   void run(const FrameSettings& settings, const btDispatcherInfo& info);
   const FrameStats& stats() const { return m_stats; }
+  /// The last step's mesh-mesh pairs (Dispatcher::lastMeshPairs).
+  void meshPairs(std::vector<MeshPairReport>& out) const;
   /// Notes a body with an unusable pose for this step and, the first time this step, tells
   /// the callback.
   void noteBadPose(const btCollisionObject* body, PoseDefect defect);

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <utility>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/scene/scene_models.h"
 
 namespace adb::scene {
 
@@ -215,6 +215,11 @@ WorldSpec readWorld(const Json& j, const std::string& file) {
 const std::vector<std::string> kShapeKinds = {"mesh", "generated", "box", "sphere", "capsule",
                                               "plane"};
 
+void readHalfExtents(Object& o, ShapeSpec& s) {
+  s.halfExtents = o.vec3At(o.require("half_extents"), o.at("half_extents"));
+  if (!(s.halfExtents.array() > 0.0).all()) o.fail(o.at("half_extents"), "must be positive");
+}
+
 ShapeSpec readShape(const std::string& name, const Json& j, const std::string& file,
                     const std::filesystem::path& folder) {
   Object o(j, "shapes." + name, file);
@@ -234,16 +239,17 @@ ShapeSpec readShape(const std::string& name, const Json& j, const std::string& f
   } else if (kind == "generated") {
     s.kind = ShapeSpec::Kind::Generated;
     s.model = o.string("model");
-    const std::vector<std::string> models = gen::modelNames();
+    const std::vector<std::string> models = generatedModelNames();
     if (std::find(models.begin(), models.end(), s.model) == models.end()) {
       o.fail(o.at("model"), "unknown model " + inQuotes(s.model) + " (known: " + joined(models) + ")");
     }
     s.triangles = static_cast<std::size_t>(o.integer("triangles", 2000, 12, 10000000));
     s.scale = o.number("scale", 1.0, 1e-12, 1e12);
+    if (s.model == "gear") s.teeth = static_cast<int>(o.integer("teeth", s.teeth, 3, 400));
+    if (s.model == "box") readHalfExtents(o, s);
   } else if (kind == "box") {
     s.kind = ShapeSpec::Kind::Box;
-    s.halfExtents = o.vec3At(o.require("half_extents"), o.at("half_extents"));
-    if (!(s.halfExtents.array() > 0.0).all()) o.fail(o.at("half_extents"), "must be positive");
+    readHalfExtents(o, s);
   } else if (kind == "sphere") {
     s.kind = ShapeSpec::Kind::Sphere;
     s.radius = o.numberAt(o.require("radius"), o.at("radius"), 1e-12, 1e12);
@@ -301,6 +307,14 @@ BodySpec readBody(std::size_t i, const Json& j, const Scene& scene, const std::s
   b.angularVelocity = o.vec3("angular_velocity", Vec3::Zero());
   b.friction = o.number("friction", b.friction, 0.0, 1e6);
   b.restitution = o.number("restitution", b.restitution, 0.0, 1.0);
+  if (const Json* hinge = o.find("hinge")) {
+    if (b.kind != BodySpec::Kind::Dynamic) o.fail(o.at("hinge"), "only a dynamic body has one");
+    Object h(*hinge, o.at("hinge"), file);
+    const Vec3 axis = h.vec3At(h.require("axis"), h.at("axis"));
+    if (!(axis.norm() > 1e-12)) h.fail(h.at("axis"), "a zero axis");
+    b.hinge = axis.normalized();
+    h.finish();
+  }
   o.finish();
   return b;
 }

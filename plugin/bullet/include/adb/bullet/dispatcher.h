@@ -15,6 +15,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/bullet/precision.h"
@@ -43,6 +44,10 @@ class Dispatcher : public btCollisionDispatcher {
   const FrameSettings& frameSettings() const { return m_settings; }
   /// Statistics of the last step's adb pairs.
   const FrameStats& lastFrameStats() const;
+  /// The last step's mesh-mesh pairs, into `out` (cleared first; reuse it across steps and
+  /// nothing is allocated once it is large enough). A pair inside a compound names the
+  /// compound's body.
+  void lastMeshPairs(std::vector<MeshPairReport>& out) const;
 
   /// Called once per step for each body whose pose adb cannot use (NaN, a rotation that is
   /// not orthonormal, beyond 1e150), as soon as one of its adb pairs meets it. The body's

@@ -69,6 +69,21 @@ struct BadPose {
   PoseDefect defect = PoseDefect::None;
 };
 
+/// One mesh-mesh pair of the last step as the budget left it (Dispatcher::lastMeshPairs): which
+/// pairs a budget cut, and how sure their answers are (to show them, or to act on them).
+struct MeshPairReport {
+  enum class Outcome {
+    Exact,    ///< traversal completed: exact contacts
+    Quality,  ///< stopped at the quality target (kMin node pairs above pMin)
+    Cut,      ///< cut by the budget: plausible contacts where p >= pAccept
+  };
+  const btCollisionObject* body0 = nullptr;
+  const btCollisionObject* body1 = nullptr;
+  Outcome outcome = Outcome::Exact;
+  double confidence = 1.0;    ///< see FrameStats::meanConfidence
+  double completeness = 1.0;  ///< see FrameStats::meanCompleteness
+};
+
 /// What the last step did with the adb pairs it met.
 struct FrameStats {
   /// Bodies with a pose adb could not use this step (all counted, the first few named).

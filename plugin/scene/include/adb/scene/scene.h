@@ -37,9 +37,11 @@ struct ShapeSpec {
   std::filesystem::path file;  ///< absolute (resolved against the scene file's folder)
   double scale = 1.0;
   bool recentre = true;
-  // Generated: one of adb::gen::modelNames(), about this many triangles, then scaled.
+  // Generated: one of generatedModelNames() (scene_models.h), about this many triangles,
+  // then scaled. "gear" takes `teeth`; "box" takes halfExtents.
   std::string model;
   std::size_t triangles = 2000;
+  int teeth = 12;
   // Primitives (Bullet's shapes).
   Vec3 halfExtents = Vec3::Zero();  ///< box
   double radius = 0.0;              ///< sphere, capsule
@@ -58,6 +60,9 @@ struct BodySpec {
   Vec3 angularVelocity = Vec3::Zero();
   double friction = 0.5;
   double restitution = 0.0;
+  /// A dynamic body hinged to the world (a gear on its axle): it turns about this axis (world
+  /// frame, unit) through its origin, and nothing else. Zero: free.
+  Vec3 hinge = Vec3::Zero();
 };
 
 struct Keyframe {

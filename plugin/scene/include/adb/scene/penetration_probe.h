@@ -17,7 +17,7 @@
 #include "adb/core/geometry.h"
 #include "adb/core/tree.h"
 
-namespace adb::demo {
+namespace adb::scene {
 
 /// One body as the probe sees it: its tree (for inside and distance tests) and the vertices
 /// its triangles use, in mesh coordinates.
@@ -50,4 +50,4 @@ double deepestVertexInside(const ProbeBody& a, const std::vector<Vec3>& worldVer
 /// Measures every pair of bodies whose world boxes overlap.
 PenetrationReport measurePenetration(const std::vector<ProbeBody>& bodies);
 
-}  // namespace adb::demo
+}  // namespace adb::scene

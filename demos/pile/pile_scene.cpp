@@ -9,9 +9,9 @@
 #include <cmath>
 #include <random>
 
-#include "common/triangle_arrays.h"
-#include "scene/convex_decomposition.h"
-#include "scene/penetration_probe.h"
+#include "adb/bullet/triangle_arrays.h"
+#include "pile/convex_decomposition.h"
+#include "adb/scene/penetration_probe.h"
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
@@ -21,6 +21,10 @@
 
 namespace adb::demo {
 namespace {
+
+using scene::measurePenetration;
+using scene::PenetrationReport;
+using scene::ProbeBody;
 
 constexpr double kGravity = 9.81;
 constexpr double kFloorTop = 0.0;

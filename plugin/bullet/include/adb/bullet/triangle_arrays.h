@@ -1,6 +1,6 @@
-// TriangleArrays: a TriangleMesh as Bullet's striding mesh interface. Bullet's GImpact and BVH
-// shapes read the mesh through a btTriangleIndexVertexArray that must outlive them; this owns
-// the arrays it points into. Shared by the demo scene and the study's GImpact peer.
+// TriangleArrays: a TriangleMesh as Bullet's striding mesh interface, for Bullet's own mesh shapes
+// (btBvhTriangleMeshShape, btGImpactMeshShape) beside adb's: they read the mesh through a
+// btTriangleIndexVertexArray that must outlive them, and this owns the arrays it points into.
 #pragma once
 
 #include <btBulletCollisionCommon.h>
@@ -10,7 +10,7 @@
 
 #include "adb/core/mesh.h"
 
-namespace adb::demo {
+namespace adb {
 
 struct TriangleArrays {
   std::vector<btScalar> vertices;
@@ -31,4 +31,4 @@ struct TriangleArrays {
   }
 };
 
-}  // namespace adb::demo
+}  // namespace adb

@@ -4,8 +4,9 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <utility>
 
-namespace adb::tradeoff {
+namespace adb::demo {
 namespace {
 
 constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
@@ -24,8 +25,8 @@ std::string hms(double seconds) {
 
 }  // namespace
 
-Progress::Progress(std::uint64_t total)
-    : m_total(total), m_start(Clock::now()), m_lastDraw(m_start), m_tty(isatty(STDERR_FILENO) != 0) {}
+Progress::Progress(std::uint64_t total, std::string unit)
+    : m_total(total), m_unit(std::move(unit)), m_start(Clock::now()), m_lastDraw(m_start), m_tty(isatty(STDERR_FILENO) != 0) {}
 
 void Progress::advance(std::uint64_t n) {
   m_done += n;
@@ -46,9 +47,9 @@ std::string Progress::line() const {
                               ? hms(elapsed * (1.0 - fraction) / fraction)
                               : "--:--";
   char buf[160];
-  std::snprintf(buf, sizeof buf, "[%s] %5.1f%%  %llu/%llu queries  elapsed %s  ETA %s",
+  std::snprintf(buf, sizeof buf, "[%s] %5.1f%%  %llu/%llu %s  elapsed %s  ETA %s",
                 bar.c_str(), 100.0 * fraction, static_cast<unsigned long long>(m_done),
-                static_cast<unsigned long long>(m_total), hms(elapsed).c_str(), eta.c_str());
+                static_cast<unsigned long long>(m_total), m_unit.c_str(), hms(elapsed).c_str(), eta.c_str());
   return buf;
 }
 
@@ -61,6 +62,11 @@ void Progress::draw() {
   std::fputs(line().c_str(), stderr);
   std::fflush(stderr);
   m_drawn = true;
+}
+
+void Progress::hide() {
+  clearLine();
+  m_drawn = false;
 }
 
 void Progress::note(const std::string& text) {
@@ -76,4 +82,4 @@ void Progress::finish() {
   m_drawn = false;
 }
 
-}  // namespace adb::tradeoff
+}  // namespace adb::demo

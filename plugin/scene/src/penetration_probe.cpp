@@ -1,5 +1,5 @@
 // PenetrationProbe: the deepest vertex of one body inside another, from the geometry alone.
-#include "penetration_probe.h"
+#include "adb/scene/penetration_probe.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "adb/core/primitive_contact.h"
 #include "adb/core/ray_query.h"
 
-namespace adb::demo {
+namespace adb::scene {
 namespace {
 
 // Three skewed directions, far from the axes and from each other: a mesh built on a grid
@@ -152,4 +152,4 @@ PenetrationReport measurePenetration(const std::vector<ProbeBody>& bodies) {
   return report;
 }
 
-}  // namespace adb::demo
+}  // namespace adb::scene

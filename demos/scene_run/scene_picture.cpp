@@ -1,0 +1,84 @@
+#include "scene_run/scene_picture.h"
+
+#include <algorithm>
+
+#include "render/colour_map.h"
+#include "render/rasterizer.h"
+
+namespace adb::demo {
+namespace {
+
+constexpr render::Rgb kStatic{170, 170, 175};
+constexpr render::Rgb kKinematic{90, 130, 200};
+
+render::Rgb mix(render::Rgb a, render::Rgb b, double t) {
+  auto channel = [t](std::uint8_t x, std::uint8_t y) {
+    return static_cast<std::uint8_t>(std::clamp((1.0 - t) * x + t * y, 0.0, 255.0));
+  };
+  return {channel(a.r, b.r), channel(a.g, b.g), channel(a.b, b.b)};
+}
+
+// The lowest confidence among the overlapping pairs a body is in, or -1 when in none.
+double overlapConfidence(const scene::SceneWorld& world, std::uint32_t body) {
+  double confidence = -1.0;
+  for (const scene::OverlapPair& p : world.overlapping()) {
+    if (p.body0 != body && p.body1 != body) continue;
+    confidence = confidence < 0 ? p.confidence : std::min(confidence, p.confidence);
+  }
+  return confidence;
+}
+
+render::Rgb bodyColour(const scene::SceneWorld& world, std::size_t i) {
+  const scene::BodySpec& spec = world.scene().bodies[i];
+  render::Rgb base = spec.kind == scene::BodySpec::Kind::Static      ? kStatic
+                     : spec.kind == scene::BodySpec::Kind::Kinematic ? kKinematic
+                                                                      : render::bodyColour(i);
+  const double overlap = overlapConfidence(world, static_cast<std::uint32_t>(i));
+  // Overlapping: red, the more so the surer the answer.
+  if (overlap >= 0) base = mix(base, render::Rgb{230, 50, 40}, 0.3 + 0.5 * overlap);
+  return base;
+}
+
+}  // namespace
+
+render::Camera sceneCamera(const scene::SceneWorld& world) {
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+    if (world.scene().shapes[world.scene().bodies[i].shape].kind == scene::ShapeSpec::Kind::Plane) {
+      continue;
+    }
+    const Pose pose = world.bodyPose(i);
+    const Aabb& box = world.displayMesh(i).bounds();
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner((c & 1) ? box.max().x() : box.min().x(), (c & 2) ? box.max().y() : box.min().y(),
+                        (c & 4) ? box.max().z() : box.min().z());
+      const Vec3 w = pose.rotation * corner + pose.translation;
+      lo = lo.cwiseMin(w);
+      hi = hi.cwiseMax(w);
+    }
+  }
+  if (!(lo.array() <= hi.array()).all()) lo = hi = Vec3::Zero();
+  return render::cameraFraming(lo, hi, Vec3(-0.55, -0.45, -1.0).normalized());
+}
+
+render::Image drawScene(const scene::SceneWorld& world, const render::Camera& camera, int width,
+                        int height, const std::string& caption) {
+  render::Rasterizer r(width, height);
+  r.clear();
+  r.setCamera(camera);
+  for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+    const TriangleMesh& mesh = world.displayMesh(i);
+    r.drawMesh(mesh.vertices(), mesh.triangles(), world.bodyPose(i), bodyColour(world, i));
+  }
+  for (const scene::CutPair& cut : world.cutPairs()) {
+    r.drawSegment(world.bodyPose(cut.body0).translation, world.bodyPose(cut.body1).translation,
+                  render::confidenceColour(cut.confidence));
+  }
+  for (const scene::ContactPoint& c : world.contacts()) {
+    r.drawPoint(c.position, 2.5, render::confidenceColour(c.confidence));
+  }
+  r.drawText(8, 8, caption, render::Rgb{20, 20, 20}, 2);
+  return r.image();
+}
+
+}  // namespace adb::demo

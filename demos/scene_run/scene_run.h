@@ -1,0 +1,37 @@
+// The scene run of adb-demo: a scene file built and stepped by adb::scene, with a progress bar,
+// a line now and then, the outputs (steps.csv, events.jsonl, summary.json, frames and a
+// movie), and the comparison of backends that `make demo` shows.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace adb::demo {
+
+struct SceneRunOptions {
+  std::filesystem::path scene;
+  std::string backend = "adb";
+  std::optional<int> steps;  ///< default: the scene's world.steps
+  int every = 0;             ///< a line every N steps; 0: about ten lines
+  std::filesystem::path out;  ///< empty: write nothing
+  bool render = false;
+  int width = 640, height = 480;
+  int framesEvery = 0;  ///< a frame every N steps; 0: about 30 frames per simulated second
+  int probeEvery = 0;   ///< penetration from the geometry every N steps (and the last)
+  /// Run the scene with adb (its budget), exact contacts and GImpact, and compare.
+  bool compare = false;
+  // Overrides of the scene's world settings.
+  std::optional<double> budgetMicros;
+  std::optional<std::uint64_t> budgetNodePairs;
+  std::optional<double> pMin, pAccept;
+  std::optional<int> kMin;
+  bool noSoften = false;
+};
+
+/// Runs the scene; the exit code: 0, or 2 when the scene file or its meshes are bad (one
+/// clear error on stderr) or an output cannot be written.
+int runScene(const SceneRunOptions& options);
+
+}  // namespace adb::demo

@@ -1,0 +1,73 @@
+// Recorder: what a scene run did, step by step, summed up, and written out.
+//
+// With a folder it writes
+// - steps.csv: one row per step (time, budget use, pairs, cut pairs, confidence, contacts,
+//   penetration, energy, bodies at rest; the columns are in docs/scenes.md);
+// - events.jsonl: one JSON object per overlap event, for scenes that ask for overlap;
+// - summary.json: the run's summary (RunSummary), when finish() is called.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "adb/scene/scene_world.h"
+
+namespace adb::scene {
+
+/// A run in figures.
+struct RunSummary {
+  std::string scene;        ///< the scene file
+  std::string description;
+  std::string backend;
+  std::string effects;      ///< "overlap", "contacts" or "dynamics+friction+..."
+  std::string world;        ///< BuildReport::describe()
+  int steps = 0;
+  int bodies = 0;
+  std::size_t triangles = 0;
+  double buildSeconds = 0.0;
+  double meanStepMillis = 0.0;
+  double maxStepMillis = 0.0;
+  double meanBudgetUse = 0.0;        ///< 0 without a budget
+  std::uint64_t meshPairSteps = 0;   ///< mesh-mesh pairs summed over the steps
+  std::uint64_t cutPairSteps = 0;    ///< of those, cut by the budget
+  double meanConfidence = 1.0;       ///< per step's mean, averaged over steps with pairs
+  double worstConfidence = 1.0;
+  double maxPenetration = 0.0;       ///< deepest contact point of any step
+  double meanPenetration = 0.0;      ///< each step's deepest, averaged
+  double maxProbedPenetration = -1;  ///< from the geometry (probe), -1 when not probed
+  int dynamicBodies = 0;
+  int atRestAtEnd = 0;
+  double kineticAtEnd = 0.0;
+  double energyAtStart = 0.0;        ///< after the first step
+  double energyAtEnd = 0.0;
+  std::uint64_t events = 0;
+};
+
+std::string effectsName(const Effects& effects);
+
+class Recorder {
+ public:
+  /// Records without writing.
+  explicit Recorder(const SceneWorld& world);
+  /// Records into `folder` (created). Throws std::runtime_error naming a file it cannot write.
+  Recorder(const SceneWorld& world, const std::filesystem::path& folder);
+
+  /// After each step. `probed`: the step's penetration from the geometry, or -1.
+  void record(const SceneWorld& world, double probed = -1.0);
+  /// Writes summary.json (with a folder) and returns the summary.
+  const RunSummary& finish();
+  const RunSummary& summary() const { return m_summary; }
+
+ private:
+  void open(std::ofstream& stream, const std::string& name);
+
+  std::filesystem::path m_folder;
+  std::ofstream m_steps, m_events;
+  RunSummary m_summary;
+  double m_stepSeconds = 0.0, m_budgetUse = 0.0, m_confidence = 0.0, m_penetration = 0.0;
+  int m_confidenceSteps = 0;
+};
+
+}  // namespace adb::scene

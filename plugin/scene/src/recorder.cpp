@@ -1,0 +1,158 @@
+#include "adb/scene/recorder.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <system_error>
+
+namespace adb::scene {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kStepColumns =
+    "step,time,seconds,budget_use,mesh_pairs,cut_pairs,mean_confidence,worst_confidence,"
+    "overlapping,events,contacts,penetration,probed_penetration,kinetic,energy,at_rest,"
+    "node_pairs,needed_node_pairs\n";
+
+const std::string& bodyName(const SceneWorld& world, std::uint32_t i) {
+  return world.scene().bodies.at(i).name;
+}
+
+}  // namespace
+
+std::string effectsName(const Effects& effects) {
+  switch (effects.kind) {
+    case Effects::Kind::Overlap: return "overlap";
+    case Effects::Kind::Contacts: return "contacts";
+    case Effects::Kind::Dynamics: break;
+  }
+  std::string s = "dynamics";
+  if (effects.friction) s += "+friction";
+  if (effects.restitution) s += "+restitution";
+  if (effects.sleeping) s += "+sleeping";
+  if (effects.ccd) s += "+ccd";
+  if (effects.softContacts) s += "+soft_contacts";
+  return s;
+}
+
+Recorder::Recorder(const SceneWorld& world) {
+  const BuildReport& b = world.built();
+  m_summary.scene = world.scene().file.string();
+  m_summary.description = world.scene().description;
+  m_summary.backend = toString(world.backend());
+  m_summary.effects = effectsName(world.scene().effects);
+  m_summary.world = b.describe();
+  m_summary.bodies = b.bodies;
+  m_summary.triangles = b.triangles;
+  m_summary.buildSeconds = b.buildSeconds;
+  for (std::size_t i = 0; i < world.bodyCount(); ++i) m_summary.dynamicBodies += world.isDynamic(i);
+}
+
+Recorder::Recorder(const SceneWorld& world, const std::filesystem::path& folder)
+    : Recorder(world) {
+  m_folder = folder;
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) {
+    throw std::runtime_error("cannot create folder '" + folder.string() + "': " + error.message());
+  }
+  open(m_steps, "steps.csv");
+  m_steps << kStepColumns;
+  if (world.scene().effects.kind == Effects::Kind::Overlap) open(m_events, "events.jsonl");
+}
+
+void Recorder::open(std::ofstream& stream, const std::string& name) {
+  const std::filesystem::path file = m_folder / name;
+  stream.open(file);
+  if (!stream) throw std::runtime_error("cannot write '" + file.string() + "'");
+}
+
+void Recorder::record(const SceneWorld& world, double probed) {
+  const StepRecord& r = world.last();
+  RunSummary& s = m_summary;
+  ++s.steps;
+  m_stepSeconds += r.seconds;
+  s.maxStepMillis = std::max(s.maxStepMillis, 1e3 * r.seconds);
+  m_budgetUse += r.budgetUse;
+  s.meshPairSteps += r.meshPairs;
+  s.cutPairSteps += r.cutPairs;
+  if (r.meshPairs > 0) {
+    m_confidence += r.meanConfidence;
+    ++m_confidenceSteps;
+    s.worstConfidence = std::min(s.worstConfidence, r.worstConfidence);
+  }
+  s.maxPenetration = std::max(s.maxPenetration, r.penetration);
+  m_penetration += r.penetration;
+  if (probed >= 0) s.maxProbedPenetration = std::max(s.maxProbedPenetration, probed);
+  s.atRestAtEnd = r.atRest;
+  s.kineticAtEnd = r.kinetic;
+  if (s.steps == 1) s.energyAtStart = r.energy;
+  s.energyAtEnd = r.energy;
+  s.events += r.events;
+  if (m_steps.is_open()) {
+    m_steps << r.step << ',' << r.time << ',' << r.seconds << ',' << r.budgetUse << ','
+            << r.meshPairs << ',' << r.cutPairs << ',' << r.meanConfidence << ','
+            << r.worstConfidence << ',' << r.overlapping << ',' << r.events << ','
+            << r.contacts << ',' << r.penetration << ',' << probed << ',' << r.kinetic << ','
+            << r.energy << ',' << r.atRest << ',' << r.frame.nodePairs << ','
+            << r.frame.neededNodePairs << '\n';
+  }
+  if (m_events.is_open()) {
+    for (const OverlapEvent& e : world.events()) {
+      const Json line = {{"step", e.step},
+                         {"time", e.time},
+                         {"event", e.begin ? "begin" : "end"},
+                         {"body0", bodyName(world, e.body0)},
+                         {"body1", bodyName(world, e.body1)},
+                         {"confidence", e.confidence}};
+      m_events << line.dump() << '\n';
+    }
+  }
+}
+
+const RunSummary& Recorder::finish() {
+  RunSummary& s = m_summary;
+  if (s.steps > 0) {
+    s.meanStepMillis = 1e3 * m_stepSeconds / s.steps;
+    s.meanBudgetUse = m_budgetUse / s.steps;
+    s.meanPenetration = m_penetration / s.steps;
+  }
+  if (m_confidenceSteps > 0) s.meanConfidence = m_confidence / m_confidenceSteps;
+  if (m_folder.empty()) return s;
+  m_steps.flush();
+  m_events.flush();
+  const Json j = {{"scene", s.scene},
+                  {"description", s.description},
+                  {"backend", s.backend},
+                  {"effects", s.effects},
+                  {"world", s.world},
+                  {"steps", s.steps},
+                  {"bodies", s.bodies},
+                  {"dynamic_bodies", s.dynamicBodies},
+                  {"triangles", s.triangles},
+                  {"build_seconds", s.buildSeconds},
+                  {"mean_step_ms", s.meanStepMillis},
+                  {"max_step_ms", s.maxStepMillis},
+                  {"mean_budget_use", s.meanBudgetUse},
+                  {"mesh_pair_steps", s.meshPairSteps},
+                  {"cut_pair_steps", s.cutPairSteps},
+                  {"mean_confidence", s.meanConfidence},
+                  {"worst_confidence", s.worstConfidence},
+                  {"max_penetration", s.maxPenetration},
+                  {"mean_penetration", s.meanPenetration},
+                  {"max_probed_penetration", s.maxProbedPenetration},
+                  {"at_rest_at_end", s.atRestAtEnd},
+                  {"kinetic_at_end", s.kineticAtEnd},
+                  {"energy_at_start", s.energyAtStart},
+                  {"energy_at_end", s.energyAtEnd},
+                  {"events", s.events}};
+  const std::filesystem::path file = m_folder / "summary.json";
+  std::ofstream out(file);
+  out << j.dump(2) << '\n';
+  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
+  return s;
+}
+
+}  // namespace adb::scene
