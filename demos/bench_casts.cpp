@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "adb/bullet/mesh_shape.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/bullet/triangle_arrays.h"
 
 namespace {

@@ -12,7 +12,7 @@
 #include <map>
 #include <memory>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "common/pair_kind_scene.h"
 
 namespace {

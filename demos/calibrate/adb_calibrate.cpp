@@ -25,9 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "adb/core/benchmark_poses.h"
+#include "adb/support/benchmark_poses.h"
 #include "adb/core/collision_estimate.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
 #include "adb/io/mesh_file.h"

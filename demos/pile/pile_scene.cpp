@@ -15,9 +15,9 @@
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
-#include "adb/core/benchmark_poses.h"
+#include "adb/support/benchmark_poses.h"
 #include "adb/core/mass_properties.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb::demo {
 namespace {

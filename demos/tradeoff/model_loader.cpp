@@ -1,7 +1,7 @@
 // Loading one model of the study.
 #include "model_loader.h"
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/io/mesh_file.h"
 
 namespace adb::tradeoff {

@@ -10,7 +10,7 @@
 #include <limits>
 #include <sstream>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb::tradeoff {
 namespace {

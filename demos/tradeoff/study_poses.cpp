@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "adb/core/benchmark_poses.h"
+#include "adb/support/benchmark_poses.h"
 
 namespace adb::tradeoff {
 namespace {

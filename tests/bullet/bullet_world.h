@@ -11,7 +11,7 @@
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb::test {
 

@@ -11,7 +11,7 @@
 #include <limits>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "bullet_world.h"
 
 namespace adb {

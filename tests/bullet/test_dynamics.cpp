@@ -9,7 +9,7 @@
 
 #include <memory>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "bullet_world.h"
 
 namespace adb {

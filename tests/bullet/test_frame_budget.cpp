@@ -15,7 +15,7 @@
 #include <limits>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "bullet_world.h"
 
 namespace adb {

@@ -16,8 +16,8 @@
 
 #include "adb/bullet/triangle_arrays.h"
 #include "adb/bullet/mesh_shape.h"
-#include "adb/core/benchmark_poses.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
 #include "bullet_world.h"
 
 namespace adb {

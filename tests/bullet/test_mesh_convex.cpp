@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <string>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "common/pair_kind_scene.h"
 
 namespace adb {

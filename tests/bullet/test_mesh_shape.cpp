@@ -5,8 +5,8 @@
 #include <random>
 
 #include "adb/bullet/mesh_shape.h"
-#include "adb/core/benchmark_poses.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb {
 namespace {

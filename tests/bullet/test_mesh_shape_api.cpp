@@ -13,8 +13,8 @@
 #include "adb/bullet/mesh_serialization.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/bullet/warnings.h"
-#include "adb/core/benchmark_poses.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb {
 namespace {

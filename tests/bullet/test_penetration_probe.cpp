@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/scene/penetration_probe.h"
 
 namespace adb::scene {

@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "adb/core/benchmark_poses.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
 #include "bullet_world.h"
 
 namespace adb {

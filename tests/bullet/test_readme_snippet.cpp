@@ -4,7 +4,7 @@
 
 #include <btBulletDynamicsCommon.h>
 
-#include <adb/core/mesh_generators.h>
+#include <adb/support/mesh_generators.h>
 
 // --- README snippet begins ---
 #include <adb/bullet/dispatcher.h>

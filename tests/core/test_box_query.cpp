@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "adb/core/box_query.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "test_support.h"
 
 namespace adb {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/tree.h"
 #include "cell_count.h"
 #include "node_geometry.h"

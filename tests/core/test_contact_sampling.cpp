@@ -9,7 +9,7 @@
 #include <tuple>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/tree.h"
 #include "test_support.h"
 

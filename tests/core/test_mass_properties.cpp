@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "adb/core/mass_properties.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb {
 namespace {

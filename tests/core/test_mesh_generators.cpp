@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb {
 namespace {

@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "adb/core/benchmark_poses.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/probability.h"
 #include "adb/core/tree.h"
 #include "adb/core/triangle_test.h"

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "adb/core/box_query.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/primitive_contact.h"
 #include "adb/core/tree.h"
 #include "adb/core/triangle_test.h"

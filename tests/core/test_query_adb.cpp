@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/tree.h"
 #include "test_support.h"
 

@@ -2,7 +2,7 @@
 // zero disagreements; plus witness collection and budgets in exact mode.
 #include <gtest/gtest.h>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/tree.h"
 #include "test_support.h"
 

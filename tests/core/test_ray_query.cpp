@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/ray_query.h"
 #include "test_support.h"
 

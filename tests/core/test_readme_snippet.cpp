@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 // --- README snippet begins ---
-#include <adb/core/mesh_generators.h>
+#include <adb/support/mesh_generators.h>
 #include <adb/core/query.h>
 #include <adb/core/tree.h>
 

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "adb/core/benchmark_poses.h"
+#include "adb/support/benchmark_poses.h"
 #include "adb/core/mesh.h"
 #include "adb/core/query.h"
 #include "adb/core/triangle_test.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/tree.h"
 #include "test_support.h"
 

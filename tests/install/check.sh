@@ -9,6 +9,12 @@ source=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+# The installed core carries only what a collision user needs: the generated geometry and
+# benchmark poses are adb::support's.
+for gone in mesh_generators.h benchmark_poses.h; do
+  if [ -e "$work/prefix/include/adb/core/$gone" ]; then echo "FAIL: adb/core/$gone installed"; exit 1; fi
+  [ -e "$work/prefix/include/adb/support/$gone" ] || { echo "FAIL: adb/support/$gone missing"; exit 1; }
+done
 cmake -S "$source/tests/install/consumer" -B "$work/consumer" \
   -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"

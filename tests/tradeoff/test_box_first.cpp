@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "adb/core/benchmark_poses.h"
-#include "adb/core/mesh_generators.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/query.h"
 #include "adb_method.h"
 #include "box_first.h"

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
 #include "root_overlap.h"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "adb/core/benchmark_poses.h"
+#include "adb/support/benchmark_poses.h"
 #include "root_overlap.h"
 
 namespace adb::tradeoff {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 #include "adb/io/mesh_file.h"
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_models.h"

@@ -38,6 +38,7 @@ OverlapQueries::OverlapQueries(const Scene& scene, Backend backend) : m_budget(s
   m_settings.kMin = std::max(1, scene.world.kMin);
   m_settings.stopAtFirstHit = true;
   m_budgeted = backend == Backend::Adb && m_budget.kind != BudgetSpec::Kind::None;
+  m_adbQueries = backend != Backend::GImpact;
 }
 
 PairAnswer OverlapQueries::meshPair(const btCollisionObject& a, const btCollisionObject& b,
@@ -86,7 +87,7 @@ void OverlapQueries::run(btCollisionWorld& world,
     auto* b = static_cast<btCollisionObject*>(pairs[i].m_pProxy1->m_clientObject);
     if (indexOf(*b) < indexOf(*a)) std::swap(a, b);
     m_pairs.emplace_back(a, b);
-    if (meshes[indexOf(*a)] && meshes[indexOf(*b)]) ++meshPairs;
+    if (m_adbQueries && meshes[indexOf(*a)] && meshes[indexOf(*b)]) ++meshPairs;
   }
   // The broadphase's order is its own: sorted, a budget cuts the same pairs every run.
   std::sort(m_pairs.begin(), m_pairs.end(), [](const auto& x, const auto& y) {
@@ -100,8 +101,8 @@ void OverlapQueries::run(btCollisionWorld& world,
   double microsBefore = m_microsLeft;
   std::size_t meshLeft = meshPairs;
   for (auto& [a, b] : m_pairs) {
-    const MeshData* ma = meshes[indexOf(*a)].get();
-    const MeshData* mb = meshes[indexOf(*b)].get();
+    const MeshData* ma = m_adbQueries ? meshes[indexOf(*a)].get() : nullptr;
+    const MeshData* mb = m_adbQueries ? meshes[indexOf(*b)].get() : nullptr;
     PairAnswer answer = ma && mb ? meshPair(*a, *b, *ma, *mb, meshLeft--) : bulletPair(world, *a, *b);
     answer.bodies = {indexOf(*a), indexOf(*b)};
     if (answer.meshMesh) {

@@ -45,6 +45,7 @@ class OverlapQueries {
 
   QuerySettings m_settings;
   BudgetSpec m_budget;
+  bool m_adbQueries = true;  // false under GImpact: every pair is Bullet's
   bool m_budgeted = false;
   double m_microsLeft = 0.0;
   std::uint64_t m_nodePairsLeft = 0;

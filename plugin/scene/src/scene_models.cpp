@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb::scene {
 namespace {

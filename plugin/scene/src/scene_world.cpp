@@ -399,6 +399,10 @@ Pose SceneWorld::bodyPose(std::size_t body) const {
   return p;
 }
 
+Pose SceneWorld::scenePose(std::size_t body) const {
+  return compose(bodyPose(body), inverse(m_impl->bodyShapes.at(body).meshFromShape));
+}
+
 bool SceneWorld::isDynamic(std::size_t body) const {
   return m_impl->scene.bodies.at(body).kind == BodySpec::Kind::Dynamic;
 }

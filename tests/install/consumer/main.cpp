@@ -3,7 +3,7 @@
 // the directory given as argument, else the system's temporary directory, and loads it).
 #include <adb/bullet/dispatcher.h>
 #include <adb/bullet/mesh_shape.h>
-#include <adb/core/mesh_generators.h>
+#include <adb/support/mesh_generators.h>
 #include <adb/core/query.h>
 #include <adb/core/tree.h>
 #include <adb/io/mesh_file.h>

@@ -133,6 +133,9 @@ class SceneWorld {
   /// large square): what a picture draws at bodyPose().
   const TriangleMesh& displayMesh(std::size_t body) const;
   Pose bodyPose(std::size_t body) const;
+  /// The body's pose in the scene file's terms (that of its mesh's own frame, not of the
+  /// principal frame Bullet's body uses): a scene written with these poses starts here.
+  Pose scenePose(std::size_t body) const;
   bool isDynamic(std::size_t body) const;
 
   /// After the last step: contact points (contacts and dynamics), the pairs a budget cut, and

@@ -1,7 +1,7 @@
 // Generated test geometry (adb::gen): the shape generators, merge/transform helpers and the
 // named benchmark models. Most closed shapes are one wrapped quad lattice (torus topology):
 // torus, knot tube, gear (a rectangle profile revolved) and pipe (an annulus profile swept).
-#include "adb/core/mesh_generators.h"
+#include "adb/support/mesh_generators.h"
 
 #include <algorithm>
 #include <array>

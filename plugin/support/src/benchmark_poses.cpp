@@ -1,5 +1,5 @@
 // Random poses of the benchmark procedure.
-#include "adb/core/benchmark_poses.h"
+#include "adb/support/benchmark_poses.h"
 
 #include <cmath>
 
