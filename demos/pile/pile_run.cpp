@@ -93,8 +93,6 @@ double mean(const std::vector<double>& v) {
 
 }  // namespace
 
-}  // namespace
-
 int runPile(const PileRunOptions& o) {
   const bool adbBackend = o.settings.backend == Backend::Adb;
   const char* backend = adbBackend                                        ? "adb"

@@ -30,9 +30,9 @@ double overlapConfidence(const scene::SceneWorld& world, std::uint32_t body) {
 
 render::Rgb bodyColour(const scene::SceneWorld& world, std::size_t i) {
   const scene::BodySpec& spec = world.scene().bodies[i];
-  render::Rgb base = spec.kind == scene::BodySpec::Kind::Static      ? kStatic
-                     : spec.kind == scene::BodySpec::Kind::Kinematic ? kKinematic
-                                                                      : render::bodyColour(i);
+  // Kinematic bodies are darker: they drive, they do not respond.
+  render::Rgb base = spec.kind == scene::BodySpec::Kind::Static ? kStatic : render::bodyColour(i);
+  if (spec.kind == scene::BodySpec::Kind::Kinematic) base = mix(base, kKinematic, 0.5);
   const double overlap = overlapConfidence(world, static_cast<std::uint32_t>(i));
   // Overlapping: red, the more so the surer the answer.
   if (overlap >= 0) base = mix(base, render::Rgb{230, 50, 40}, 0.3 + 0.5 * overlap);
@@ -42,7 +42,9 @@ render::Rgb bodyColour(const scene::SceneWorld& world, std::size_t i) {
 }  // namespace
 
 render::Camera sceneCamera(const scene::SceneWorld& world) {
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  const scene::ViewSpec& view = world.scene().view;
+  if (view.given) return render::Camera{view.eye, view.target, Vec3::UnitY(), view.fovDegrees};
+  Aabb bounds;
   for (std::size_t i = 0; i < world.bodyCount(); ++i) {
     if (world.scene().shapes[world.scene().bodies[i].shape].kind == scene::ShapeSpec::Kind::Plane) {
       continue;
@@ -50,15 +52,13 @@ render::Camera sceneCamera(const scene::SceneWorld& world) {
     const Pose pose = world.bodyPose(i);
     const Aabb& box = world.displayMesh(i).bounds();
     for (int c = 0; c < 8; ++c) {
-      const Vec3 corner((c & 1) ? box.max().x() : box.min().x(), (c & 2) ? box.max().y() : box.min().y(),
-                        (c & 4) ? box.max().z() : box.min().z());
-      const Vec3 w = pose.rotation * corner + pose.translation;
-      lo = lo.cwiseMin(w);
-      hi = hi.cwiseMax(w);
+      const Vec3 corner((c & 1) ? box.hi.x() : box.lo.x(), (c & 2) ? box.hi.y() : box.lo.y(),
+                        (c & 4) ? box.hi.z() : box.lo.z());
+      bounds.grow(pose.rotation * corner + pose.translation);
     }
   }
-  if (!(lo.array() <= hi.array()).all()) lo = hi = Vec3::Zero();
-  return render::cameraFraming(lo, hi, Vec3(-0.55, -0.45, -1.0).normalized());
+  if (!(bounds.lo.array() <= bounds.hi.array()).all()) bounds = Aabb{Vec3::Zero(), Vec3::Zero()};
+  return render::cameraFraming(bounds.lo, bounds.hi, Vec3(-0.55, -0.45, -1.0).normalized());
 }
 
 render::Image drawScene(const scene::SceneWorld& world, const render::Camera& camera, int width,

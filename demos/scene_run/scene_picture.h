@@ -11,8 +11,8 @@
 
 namespace adb::demo {
 
-/// A camera that frames the scene's bodies as they are now (planes left out), seen from the
-/// front, right and above.
+/// The scene's view, or a camera that frames its bodies as they are now (planes left out),
+/// seen from the front, right and above.
 render::Camera sceneCamera(const scene::SceneWorld& world);
 
 render::Image drawScene(const scene::SceneWorld& world, const render::Camera& camera, int width,

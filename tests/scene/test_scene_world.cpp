@@ -94,7 +94,8 @@ TEST(SceneWorld, AContactsSceneHasContactsButNoSolver) {
 
 // The overlap state after every step against adb's exact query on independently built trees
 // at the same poses. The exact backend must agree everywhere; the adb backend (k_min 5 under a
-// node-pair budget) wherever it is at least 99 % sure, and on 97 % of the frames in all.
+// node-pair budget) wherever it is at least 99 % sure, and on 97 % of the frames in all;
+// GImpact, a peer with margins of its own, on 97 % of the frames.
 TEST(SceneWorld, OverlapEventsMatchExactBooleanQueriesFrameByFrame) {
   const Scene scene = gallery("assembly_path.json");
   const auto fixture = MeshData::build(generatedMesh(scene.shapes[0]));
@@ -102,7 +103,7 @@ TEST(SceneWorld, OverlapEventsMatchExactBooleanQueriesFrameByFrame) {
   QuerySettings exact;
   exact.mode = QueryMode::Exact;
   QueryScratch scratch;
-  for (Backend backend : {Backend::Exact, Backend::Adb}) {
+  for (Backend backend : {Backend::Exact, Backend::Adb, Backend::GImpact}) {
     SCOPED_TRACE(toString(backend));
     SceneWorld world(scene, backend);
     int agree = 0, sureDisagree = 0, overlapFrames = 0, begins = 0, ends = 0;
@@ -128,10 +129,14 @@ TEST(SceneWorld, OverlapEventsMatchExactBooleanQueriesFrameByFrame) {
     EXPECT_LT(overlapFrames, scene.world.steps - 100);  // the centred one does not
     EXPECT_GE(begins, 1);
     EXPECT_EQ(begins, ends);
+    std::printf("%s: %d of %d frames agree with exact queries\n", toString(backend), agree,
+                scene.world.steps);
     if (backend == Backend::Exact) {
       EXPECT_EQ(agree, scene.world.steps);
     } else {
-      EXPECT_EQ(sureDisagree, 0);
+      if (backend == Backend::Adb) {
+        EXPECT_EQ(sureDisagree, 0);
+      }
       EXPECT_GE(agree, 0.97 * scene.world.steps);
     }
   }

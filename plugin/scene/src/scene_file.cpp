@@ -220,6 +220,18 @@ void readHalfExtents(Object& o, ShapeSpec& s) {
   if (!(s.halfExtents.array() > 0.0).all()) o.fail(o.at("half_extents"), "must be positive");
 }
 
+ViewSpec readView(const Json& j, const std::string& file) {
+  Object o(j, "view", file);
+  ViewSpec v;
+  v.given = true;
+  v.eye = o.vec3At(o.require("eye"), o.at("eye"));
+  v.target = o.vec3At(o.require("target"), o.at("target"));
+  if (!((v.target - v.eye).norm() > 0)) o.fail(o.at("target"), "the same point as the eye");
+  v.fovDegrees = o.number("fov_degrees", v.fovDegrees, 1.0, 170.0);
+  o.finish();
+  return v;
+}
+
 ShapeSpec readShape(const std::string& name, const Json& j, const std::string& file,
                     const std::filesystem::path& folder) {
   Object o(j, "shapes." + name, file);
@@ -446,6 +458,7 @@ Scene parseScene(const std::string& text, const std::string& name,
   Scene scene;
   scene.description = top.string("description", "");
   if (const Json* w = top.find("world")) scene.world = readWorld(*w, name);
+  if (const Json* v = top.find("view")) scene.view = readView(*v, name);
   const Json& shapes = top.require("shapes");
   if (!shapes.is_object() || shapes.empty()) {
     throw SceneError(name, "shapes", "expected an object of named shapes");

@@ -96,6 +96,27 @@ double innerRadius(const TriangleMesh& display) {
   return 0.2 * display.bounds().extent().minCoeff();
 }
 
+// GImpact's own registration covers contacts only; contactPairTest (an overlap scene's pair
+// test) asks for closest points, which would otherwise find no algorithm for GImpact shapes.
+void registerGImpact(btCollisionDispatcher& dispatcher) {
+  btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
+  static btGImpactCollisionAlgorithm::CreateFunc closestPoints;
+  for (int other = 0; other < MAX_BROADPHASE_COLLISION_TYPES; ++other) {
+    dispatcher.registerClosestPointsCreateFunc(GIMPACT_SHAPE_PROXYTYPE, other, &closestPoints);
+    dispatcher.registerClosestPointsCreateFunc(other, GIMPACT_SHAPE_PROXYTYPE, &closestPoints);
+  }
+}
+
+// The share of the step's budget the dispatcher's pairs used.
+double budgetUse(const BudgetSpec& budget, const FrameStats& frame) {
+  if (budget.kind == BudgetSpec::Kind::Micros) {
+    return budget.micros > 0 ? frame.micros / budget.micros : 0.0;
+  }
+  return budget.nodePairs > 0
+             ? static_cast<double>(frame.nodePairs) / static_cast<double>(budget.nodePairs)
+             : 0.0;
+}
+
 }  // namespace
 
 struct SceneWorld::Impl {
@@ -151,7 +172,7 @@ void SceneWorld::Impl::buildWorld() {
   } else {
     dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
     if (backend == Backend::GImpact) {
-      btGImpactCollisionAlgorithm::registerAlgorithm(dispatcher.get());
+      registerGImpact(*dispatcher);
     } else {
       registerAlgorithms(*dispatcher, *configuration);  // exact, for the non-mesh pairs
     }
@@ -374,6 +395,7 @@ const StepRecord& SceneWorld::step() {
   if (!s.overlapQueries) {
     detail::measureContacts(*s.dispatcher, s.adbDispatcher, s.pairReports, s.record, s.contacts,
                             s.cutPairs);
+    if (s.report.budget) s.record.budgetUse = budgetUse(s.scene.world.budget, s.record.frame);
   }
   if (s.dynamics) detail::measureDynamics(*s.dynamics, s.scene.world.gravity, s.record);
   return s.record;

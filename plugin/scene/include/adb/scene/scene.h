@@ -91,9 +91,18 @@ struct Effects {
   bool softContacts = false;  ///< plausible contacts softened by their probability
 };
 
+/// Where pictures look from (optional: without it they frame every body as it starts).
+struct ViewSpec {
+  bool given = false;
+  Vec3 eye = Vec3::Zero();
+  Vec3 target = Vec3::Zero();
+  double fovDegrees = 40.0;
+};
+
 struct Scene {
   std::filesystem::path file;  ///< where it was read from (empty when parsed from text)
   std::string description;
+  ViewSpec view;
   WorldSpec world;
   std::vector<ShapeSpec> shapes;
   std::vector<BodySpec> bodies;
