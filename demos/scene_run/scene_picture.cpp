@@ -77,7 +77,9 @@ render::Image drawScene(const scene::SceneWorld& world, const render::Camera& ca
   for (const scene::ContactPoint& c : world.contacts()) {
     r.drawPoint(c.position, 2.5, render::confidenceColour(c.confidence));
   }
-  r.drawText(8, 8, caption, render::Rgb{20, 20, 20}, 2);
+  // Twice the font's size where the caption fits the width (6 pixels a character at size 1).
+  const int scale = static_cast<int>(caption.size()) * 12 <= width - 16 ? 2 : 1;
+  r.drawText(8, 8, caption, render::Rgb{20, 20, 20}, scale);
   return r.image();
 }
 

@@ -27,6 +27,7 @@ using scene::SceneWorld;
 struct RunResult {
   RunSummary summary;
   render::Image lastFrame{1, 1};
+  std::vector<render::Image> strip;  // early, middle and last frames
   std::filesystem::path folder;
   bool rendered = false;
 };
@@ -65,10 +66,27 @@ int framesEvery(const SceneRunOptions& o, const Scene& s) {
 }
 
 std::string caption(const SceneWorld& world, const scene::StepRecord& r) {
-  char text[160];
-  std::snprintf(text, sizeof text, "%s  step %d  t %.2f s  %.1f ms/step", toString(world.backend()),
-                r.step, r.time, 1e3 * r.seconds);
+  const scene::BudgetSpec& b = world.scene().world.budget;
+  char budget[64] = "";
+  if (world.built().budget && b.kind == scene::BudgetSpec::Kind::Micros) {
+    std::snprintf(budget, sizeof budget, " budget %.0f us", b.micros);
+  } else if (world.built().budget) {
+    std::snprintf(budget, sizeof budget, " budget %llu pairs",
+                  static_cast<unsigned long long>(b.nodePairs));
+  }
+  char text[200];
+  std::snprintf(text, sizeof text, "%s%s  step %d  %.2f s  %.1f ms/step",
+                toString(world.backend()), budget, r.step, r.time, 1e3 * r.seconds);
   return text;
+}
+
+// The strip's frames: the first rendered at or after an eighth of the run, the first at or
+// after its middle, and the last.
+bool stripFrame(int step, int steps, int frameEvery, std::size_t taken) {
+  const int marks[] = {std::max(1, steps / 8), std::max(1, steps / 2), steps};
+  if (taken >= 3) return false;
+  const int mark = marks[taken];
+  return step >= mark && (step - mark < frameEvery || step == steps);
 }
 
 void printLine(const scene::StepRecord& r, const scene::Effects& effects) {
@@ -122,6 +140,9 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
     recorder->record(world, probe ? world.probePenetration() : -1.0);
     if (o.render && (step % frameEvery == 0 || step == steps)) {
       result.lastFrame = drawScene(world, camera, o.width, o.height, caption(world, r));
+      if (stripFrame(step, steps, frameEvery, result.strip.size())) {
+        result.strip.push_back(result.lastFrame);
+      }
       char name[32];
       std::snprintf(name, sizeof name, "%05d.png", frame++);
       render::writePng(result.lastFrame, folder / "frames" / name);
@@ -139,7 +160,9 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   if (o.render) {
     const int fps = std::max(1, static_cast<int>(std::lround(1.0 / (frameEvery * scene.world.timeStep))));
     const std::string movie = writeMovie(folder / "frames", fps, folder / "movie.mp4");
-    std::printf("frames: %s/frames/ (%d)%s%s\n", folder.string().c_str(), frame,
+    render::writePng(render::sideBySide(result.strip), folder / "strip.png");
+    std::printf("frames: %s/frames/ (%d), strip of three: %s/strip.png%s%s\n",
+                folder.string().c_str(), frame, folder.string().c_str(),
                 movie.empty() ? "" : "; movie: ", movie.c_str());
   }
   return result;
@@ -170,18 +193,19 @@ void printSummary(const RunSummary& s) {
 
 void printComparison(const std::vector<RunResult>& runs) {
   const double gimpact = runs.back().summary.meanStepMillis;
-  std::printf("\n| backend | ms/step | vs GImpact | pairs cut | mean conf. | worst conf. | "
-              "deepest contact | probed penetration | at rest (end) |\n"
-              "|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n| backend | ms/step | max ms/step | vs GImpact | pairs cut | mean conf. | "
+              "worst conf. | deepest contact | probed penetration | at rest (end) | kinetic "
+              "energy (end) |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const RunResult& r : runs) {
     const RunSummary& s = r.summary;
-    std::printf("| %s | %.2f | %.1fx faster | %llu/%llu | %.4f | %.4f | %.4f | %.4f | %d/%d |\n",
-                s.backend.c_str(), s.meanStepMillis,
+    std::printf("| %s | %.2f | %.2f | %.1fx | %llu/%llu | %.4f | %.4f | %.4f | %.4f | %d/%d | "
+                "%.3f J |\n",
+                s.backend.c_str(), s.meanStepMillis, s.maxStepMillis,
                 s.meanStepMillis > 0 ? gimpact / s.meanStepMillis : 0.0,
                 static_cast<unsigned long long>(s.cutPairSteps),
                 static_cast<unsigned long long>(s.meshPairSteps), s.meanConfidence,
                 s.worstConfidence, s.maxPenetration, s.maxProbedPenetration, s.atRestAtEnd,
-                s.dynamicBodies);
+                s.dynamicBodies, s.kineticAtEnd);
   }
 }
 
