@@ -68,6 +68,11 @@ void addOptions(CLI::App& app, Options& o) {
   app.add_flag("--compare", o.scene.compare,
                "scene: run it with adb, exact and gimpact and compare (DIR/comparison.png "
                "with --render)");
+  app.add_option("--strip-steps", o.scene.stripSteps,
+                 "scene: the steps DIR/strip.png shows side by side (default: an eighth of the "
+                 "run, its middle, its last step)")
+      ->check(CLI::PositiveNumber)
+      ->delimiter(',');
   app.add_option("--width", o.scene.width, "frame width in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--height", o.scene.height, "frame height in pixels")->check(CLI::Range(16, 8192));
   app.add_option("--frames-every", o.scene.framesEvery,

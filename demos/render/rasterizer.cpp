@@ -141,8 +141,8 @@ void Rasterizer::disc(double cx, double cy, double radius, Rgb colour, float inv
     for (int x = x0; x <= x1; ++x) {
       const double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
       if (dx * dx + dy * dy > r * r) continue;
-      // Hidden behind a surface more than 2 % of the distance nearer.
-      if (m_depth[static_cast<std::size_t>(y) * m_image.width() + x] > inverseDepth * 1.02f) continue;
+      // Hidden behind a surface more than 4 % of the distance nearer.
+      if (m_depth[static_cast<std::size_t>(y) * m_image.width() + x] > inverseDepth * 1.04f) continue;
       m_image.at(x, y) = colour;
     }
   }

@@ -75,7 +75,7 @@ render::Image drawScene(const scene::SceneWorld& world, const render::Camera& ca
                   render::confidenceColour(cut.confidence));
   }
   for (const scene::ContactPoint& c : world.contacts()) {
-    r.drawPoint(c.position, 2.5, render::confidenceColour(c.confidence));
+    r.drawPoint(c.position, 3.5, render::confidenceColour(c.confidence));
   }
   // Twice the font's size where the caption fits the width (6 pixels a character at size 1).
   const int scale = static_cast<int>(caption.size()) * 12 <= width - 16 ? 2 : 1;

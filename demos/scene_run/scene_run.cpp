@@ -80,13 +80,10 @@ std::string caption(const SceneWorld& world, const scene::StepRecord& r) {
   return text;
 }
 
-// The strip's frames: the first rendered at or after an eighth of the run, the first at or
-// after its middle, and the last.
-bool stripFrame(int step, int steps, int frameEvery, std::size_t taken) {
-  const int marks[] = {std::max(1, steps / 8), std::max(1, steps / 2), steps};
-  if (taken >= 3) return false;
-  const int mark = marks[taken];
-  return step >= mark && (step - mark < frameEvery || step == steps);
+// The steps of the strip's frames: as asked, or an eighth of the run, its middle and its end.
+std::vector<int> stripSteps(const SceneRunOptions& o, int steps) {
+  if (!o.stripSteps.empty()) return o.stripSteps;
+  return {std::max(1, steps / 8), std::max(1, steps / 2), steps};
 }
 
 void printLine(const scene::StepRecord& r, const scene::Effects& effects) {
@@ -130,6 +127,7 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   const int every = o.every > 0 ? o.every : std::max(1, steps / 10);
   const int frameEvery = framesEvery(o, scene);
   const render::Camera camera = sceneCamera(world);
+  const std::vector<int> strip = stripSteps(o, steps);
   if (o.render) std::filesystem::create_directories(folder / "frames");
   printHeader(scene.effects);
   Progress progress(static_cast<std::uint64_t>(steps), "steps");
@@ -138,15 +136,17 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
     const scene::StepRecord& r = world.step();
     const bool probe = o.probeEvery > 0 && (step % o.probeEvery == 0 || step == steps);
     recorder->record(world, probe ? world.probePenetration() : -1.0);
-    if (o.render && (step % frameEvery == 0 || step == steps)) {
+    const bool inStrip = std::find(strip.begin(), strip.end(), step) != strip.end();
+    const bool inMovie = step % frameEvery == 0 || step == steps;
+    if (o.render && (inStrip || inMovie)) {
       result.lastFrame = drawScene(world, camera, o.width, o.height, caption(world, r));
-      if (stripFrame(step, steps, frameEvery, result.strip.size())) {
-        result.strip.push_back(result.lastFrame);
-      }
+      if (inStrip) result.strip.push_back(result.lastFrame);
+      result.rendered = true;
+    }
+    if (o.render && inMovie) {
       char name[32];
       std::snprintf(name, sizeof name, "%05d.png", frame++);
       render::writePng(result.lastFrame, folder / "frames" / name);
-      result.rendered = true;
     }
     if (step % every == 0 || step == steps) {
       progress.hide();
@@ -160,7 +160,7 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   if (o.render) {
     const int fps = std::max(1, static_cast<int>(std::lround(1.0 / (frameEvery * scene.world.timeStep))));
     const std::string movie = writeMovie(folder / "frames", fps, folder / "movie.mp4");
-    render::writePng(render::sideBySide(result.strip), folder / "strip.png");
+    if (!result.strip.empty()) render::writePng(render::sideBySide(result.strip), folder / "strip.png");
     std::printf("frames: %s/frames/ (%d), strip of three: %s/strip.png%s%s\n",
                 folder.string().c_str(), frame, folder.string().c_str(),
                 movie.empty() ? "" : "; movie: ", movie.c_str());

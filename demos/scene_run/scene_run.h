@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace adb::demo {
 
@@ -20,6 +21,8 @@ struct SceneRunOptions {
   int width = 640, height = 480;
   int framesEvery = 0;  ///< a frame every N steps; 0: about 30 frames per simulated second
   int probeEvery = 0;   ///< penetration from the geometry every N steps (and the last)
+  /// The steps strip.png shows; empty: an eighth of the run, its middle and its last step.
+  std::vector<int> stripSteps;
   /// Run the scene with adb (its budget), exact contacts and GImpact, and compare.
   bool compare = false;
   // Overrides of the scene's world settings.

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 // --- README snippet begins ---
-#include <adb/support/mesh_generators.h>
 #include <adb/core/query.h>
 #include <adb/core/tree.h>
+#include <adb/support/mesh_generators.h>  // generated test geometry (adb::support)
 
 bool readmeExample() {
   // Any indexed triangle mesh: validated here (adb::MeshError names a bad vertex/triangle).
