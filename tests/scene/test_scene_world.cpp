@@ -17,6 +17,7 @@
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_models.h"
 #include "adb/scene/scene_world.h"
+#include "adb/support/mesh_generators.h"
 
 namespace adb::scene {
 namespace {
@@ -251,6 +252,42 @@ TEST(SceneWorld, TheRecorderWritesStepsEventsAndASummary) {
   EXPECT_EQ(summary["steps"], scene.world.steps);
   EXPECT_EQ(summary["backend"], "adb");
   EXPECT_EQ(summary["effects"], "overlap");
+  std::filesystem::remove_all(dir);
+}
+
+// A user's mesh file, far from the origin in its own coordinates and in other units: scaled,
+// recentred on its box, dropped on a box, it comes to rest on it where the scene put it.
+TEST(SceneWorld, AMeshFileIsScaledRecentredAndComesToRestWhereTheScenePutIt) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("adb_meshfile_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    const TriangleMesh torus = gen::makeTorus(350, 120, 32, 16);  // millimetres, off-centre
+    std::ofstream obj(dir / "ring.obj");
+    for (const Vec3& v : torus.vertices()) obj << "v " << v.x() + 5000 << ' ' << v.y() << ' ' << v.z() << '\n';
+    for (const Triangle& t : torus.triangles()) obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  }
+  const Scene scene = parseScene(R"({
+      "world": {"steps": 120},
+      "shapes": {"floor": {"type": "box", "half_extents": [2, 0.25, 2]},
+                 "ring": {"type": "mesh", "file": "ring.obj", "scale": 0.001}},
+      "bodies": [{"name": "floor", "shape": "floor", "kind": "static", "position": [0, -0.25, 0]},
+                 {"name": "ring", "shape": "ring", "position": [0.5, 0.5, 0],
+                  "axis_angle": {"axis": [1, 0, 0], "degrees": 90}}],
+      "effects": ["dynamics", "friction"]})",
+                                 "meshfile.json", dir);
+  for (Backend backend : {Backend::Adb, Backend::GImpact}) {
+    SCOPED_TRACE(toString(backend));
+    SceneWorld world(scene, backend);
+    EXPECT_EQ(world.built().triangles, 32u * 16u * 2u);
+    EXPECT_NEAR(world.scenePose(1).translation.x(), 0.5, 1e-9);
+    for (int i = 0; i < 120; ++i) world.step();
+    const Vec3 at = world.scenePose(1).translation;
+    // Lying flat on the floor: its centre a tube's radius (0.12) above it, still near x = 0.5.
+    EXPECT_NEAR(at.y(), 0.12, 0.02);
+    EXPECT_NEAR(at.x(), 0.5, 0.05);
+    EXPECT_LT(world.last().kinetic, 1e-3);
+  }
   std::filesystem::remove_all(dir);
 }
 
