@@ -8,14 +8,10 @@
 #include "adb/io/mesh_file.h"
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_models.h"
+#include "bullet_conversions.h"
 
 namespace adb::scene::detail {
 namespace {
-
-btVector3 toBt(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-                   static_cast<btScalar>(v.z()));
-}
 
 // A plane is drawn as a square this wide: larger than any gallery scene.
 constexpr double kPlaneDisplaySize = 12.0;

@@ -3,17 +3,10 @@
 #include <algorithm>
 #include <limits>
 
+#include "bullet_conversions.h"
+
 namespace adb::scene::detail {
 namespace {
-
-Pose poseOf(const btTransform& t) {
-  Pose p;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) p.rotation(r, c) = t.getBasis()[r][c];
-    p.translation[r] = t.getOrigin()[r];
-  }
-  return p;
-}
 
 // Bullet's own pair test: any point with a negative distance is an overlap.
 struct AnyPenetration : btCollisionWorld::ContactResultCallback {

@@ -12,6 +12,7 @@
 #include "adb/bullet/registration.h"
 #include "adb/scene/penetration_probe.h"
 #include "body_shapes.h"
+#include "bullet_conversions.h"
 #include "kinematic_path.h"
 #include "overlap_queries.h"
 #include "world_measures.h"
@@ -52,20 +53,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-btTransform toBt(const Pose& p) {
-  btMatrix3x3 basis;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) basis[r][c] = static_cast<btScalar>(p.rotation(r, c));
-  }
-  return btTransform(basis, btVector3(static_cast<btScalar>(p.translation.x()),
-                                      static_cast<btScalar>(p.translation.y()),
-                                      static_cast<btScalar>(p.translation.z())));
-}
-
-btVector3 toBt(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-                   static_cast<btScalar>(v.z()));
-}
+using detail::poseOf;
+using detail::toBt;
 
 Pose compose(const Pose& a, const Pose& b) {
   return Pose{a.rotation * b.rotation, a.rotation * b.translation + a.translation};
@@ -412,13 +401,7 @@ const TriangleMesh& SceneWorld::displayMesh(std::size_t body) const {
 }
 
 Pose SceneWorld::bodyPose(std::size_t body) const {
-  const btTransform& t = m_impl->objects.at(body)->getWorldTransform();
-  Pose p;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) p.rotation(r, c) = t.getBasis()[r][c];
-    p.translation[r] = t.getOrigin()[r];
-  }
-  return p;
+  return poseOf(m_impl->objects.at(body)->getWorldTransform());
 }
 
 Pose SceneWorld::scenePose(std::size_t body) const {
