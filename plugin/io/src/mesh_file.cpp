@@ -6,6 +6,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,8 @@
 #include <system_error>
 
 #include "assimp_log_capture.h"
+#include "declared_counts.h"
+#include "scene_checks.h"
 #include "scene_flatten.h"
 
 namespace adb::io {
@@ -22,16 +25,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Triangulate only. Not JoinIdenticalVertices (it merges positions up to 1e-5 apart and, given
-// a NaN, merges other vertices into it; flattenScene welds exactly instead), not
+// Read with no post-processing, then, once checked: assimp's ValidateDataStructure and
+// Triangulate, nothing else. Not JoinIdenticalVertices (it merges positions up to 1e-5 apart
+// and, given a NaN, merges other vertices into it; flattenScene welds exactly instead), not
 // FindInvalidData (it deletes a mesh with a NaN position, the file would then "load" without
-// it), not ValidateDataStructure (it leaves NaN alone, and flattenScene checks the indices and
-// node references it would, naming the file, mesh and face). Nothing else is needed: only
-// positions are read.
-constexpr unsigned kPostProcess = aiProcess_Triangulate;
+// it). Only positions are read.
+constexpr unsigned kReadAsIs = 0;
 
 // Before assimp: its own answer for a missing or unreadable file is "Unable to open file".
-void checkReadable(const std::string& path) {
+void checkReadable(const std::string& path, const LoadLimits& limits) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) throw MeshFileError(path + ": no such file");
@@ -43,29 +45,86 @@ void checkReadable(const std::string& path) {
   if (in.peek() == std::ifstream::traits_type::eof()) {
     throw MeshFileError(path + ": the file is empty");
   }
+  const std::uint64_t size = fs::file_size(path, ec);
+  if (size > limits.maxFileBytes) {
+    throw MeshFileError(path + ": " + std::to_string(size) + " bytes, more than the limit of " +
+                        std::to_string(limits.maxFileBytes) + " (LoadLimits::maxFileBytes)");
+  }
+  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(size, detail::kHeaderBytes)), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  detail::checkDeclaredCounts(head.data(), head.size(), size, path, limits);
 }
+
+// assimp's scene, read by `read` (with no post-processing), checked, validated and
+// triangulated; its log lines go to `warnings`.
+template <class Read>
+std::unique_ptr<aiScene> importScene(Read read, const std::string& name, const LoadLimits& limits,
+                                     std::vector<std::string>& warnings) {
+  detail::AssimpLogCapture capture;  // one load at a time: see assimp_log_capture.h
+  Assimp::Importer importer;
+  // A file with bones but no meshes would otherwise get a generated skeleton mesh: triangles
+  // the file does not have.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+  auto logged = [&] {
+    for (std::string& line : capture.take()) warnings.push_back(name + ": " + std::move(line));
+  };
+  const aiScene* scene = read(importer);
+  logged();
+  if (scene == nullptr) {
+    throw MeshFileError(name + ": assimp cannot read it: " + importer.GetErrorString());
+  }
+  // assimp's validation would call this "invalid": to a user it is a file with no triangles.
+  if (scene->mNumMeshes == 0) throw MeshFileError(name + ": no triangles (no mesh in the file)");
+  detail::checkBeforeTriangulation(*scene, name, limits);
+  for (const unsigned step : {unsigned(aiProcess_ValidateDataStructure), unsigned(aiProcess_Triangulate)}) {
+    scene = importer.ApplyPostProcessing(step);
+    logged();
+    if (scene == nullptr) {
+      throw MeshFileError(name + ": not a valid mesh: " + importer.GetErrorString());
+    }
+  }
+  return std::unique_ptr<aiScene>(importer.GetOrphanedScene());  // processed outside the lock
+}
+
+adb::TriangleMesh meshOf(std::unique_ptr<aiScene> scene, std::vector<std::string> warnings,
+                         const std::string& path, LoadReport* report);
 
 }  // namespace
 
-adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report) {
-  checkReadable(path);
-
+adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report, const LoadLimits& limits) {
+  checkReadable(path, limits);
   std::vector<std::string> warnings;
-  std::unique_ptr<aiScene> scene;
-  {
-    detail::AssimpLogCapture capture;  // one load at a time: see assimp_log_capture.h
-    Assimp::Importer importer;
-    // A file with bones but no meshes would otherwise get a generated skeleton mesh: triangles
-    // the file does not have.
-    importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-    const aiScene* read = importer.ReadFile(path, kPostProcess);
-    for (std::string& line : capture.take()) warnings.push_back(path + ": " + std::move(line));
-    if (read == nullptr) {
-      throw MeshFileError(path + ": assimp cannot read it: " + importer.GetErrorString());
-    }
-    scene.reset(importer.GetOrphanedScene());  // ours now: processed outside the lock
-  }
+  std::unique_ptr<aiScene> scene = importScene(
+      [&](Assimp::Importer& importer) { return importer.ReadFile(path, kReadAsIs); }, path,
+      limits, warnings);
+  return meshOf(std::move(scene), std::move(warnings), path, report);
+}
 
+adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
+                                     const std::string& formatHint, const std::string& name,
+                                     LoadReport* report, const LoadLimits& limits) {
+  if (data == nullptr || size == 0) throw MeshFileError(name + ": no data");
+  if (size > limits.maxFileBytes) {
+    throw MeshFileError(name + ": " + std::to_string(size) + " bytes, more than the limit of " +
+                        std::to_string(limits.maxFileBytes) + " (LoadLimits::maxFileBytes)");
+  }
+  const char* bytes = static_cast<const char*>(data);
+  detail::checkDeclaredCounts(bytes, std::min(size, detail::kHeaderBytes), size, name, limits);
+  std::vector<std::string> warnings;
+  std::unique_ptr<aiScene> scene = importScene(
+      [&](Assimp::Importer& importer) {
+        return importer.ReadFileFromMemory(data, size, kReadAsIs, formatHint.c_str());
+      },
+      name, limits, warnings);
+  return meshOf(std::move(scene), std::move(warnings), name, report);
+}
+
+namespace {
+
+// The checked scene flattened into one mesh, validated by the core.
+adb::TriangleMesh meshOf(std::unique_ptr<aiScene> scene, std::vector<std::string> warnings,
+                         const std::string& path, LoadReport* report) {
   detail::FlatScene flat = detail::flattenScene(*scene, path);
   if (flat.skippedPoints + flat.skippedLines > 0) {
     warnings.push_back(path + ": skipped " + std::to_string(flat.skippedPoints) +
@@ -113,5 +172,7 @@ adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report) {
   }
   return std::move(*mesh);
 }
+
+}  // namespace
 
 }  // namespace adb::io

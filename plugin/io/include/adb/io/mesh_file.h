@@ -5,9 +5,16 @@
 // nothing else. Nothing is repaired silently: bad data (NaN/infinite coordinates, out-of-range
 // indices, no triangles) is an error, and what assimp only warns about (a missing material
 // file, say) is handed back in LoadReport::warnings.
+//
+// Files come from anywhere, so nothing in them is trusted: the counts a PLY or OFF header
+// declares are checked against the file's size and the limits before assimp reads the body;
+// assimp reads with no post-processing; its scene is validated (assimp's
+// ValidateDataStructure, then every face's size and indices) and only then triangulated.
+// Every failure is a MeshFileError (docs/reliability.md).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,6 +27,15 @@ namespace adb::io {
 class MeshFileError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// What a load will take at most: a file beyond these gets a MeshFileError that names the
+/// limit (raise it for files known to be that large).
+struct LoadLimits {
+  std::uint64_t maxFileBytes = std::uint64_t(4) << 30;  ///< 4 GiB
+  std::uint64_t maxVertices = std::uint64_t(1) << 27;   ///< 134M, declared or read
+  std::uint64_t maxFaces = std::uint64_t(1) << 27;      ///< 134M, declared or read
+  std::uint32_t maxFaceCorners = 4096;  ///< a polygon's corners (triangulated: corners - 2)
 };
 
 /// What a successful load found besides the mesh.
@@ -40,6 +56,14 @@ struct LoadReport {
 /// the vertex, re-wrapping the core's adb::MeshError), out-of-range indices.
 /// Thread-safe: concurrent calls are serialised (assimp's logger is one per process; see
 /// src/assimp_log_capture.h).
-adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report = nullptr);
+adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report = nullptr,
+                           const LoadLimits& limits = {});
+
+/// The same from bytes in memory: `formatHint` is the extension of the format ("ply", "obj",
+/// "stl", "off", "gltf", "glb", "3mf", ...), `name` stands for the file in messages. A format
+/// whose files refer to others (a glTF's .bin buffers) cannot read them from memory.
+adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
+                                     const std::string& formatHint, const std::string& name,
+                                     LoadReport* report = nullptr, const LoadLimits& limits = {});
 
 }  // namespace adb::io
