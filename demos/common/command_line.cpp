@@ -40,8 +40,9 @@ long long parseIntegerIn(const std::string& option, const std::string& text, lon
                          long long hi) {
   const long long v = parseInteger(option, text);
   if (v < lo || v > hi) {
-    // An open upper end reads better as a lower bound than as 9223372036854775807.
-    const bool open = hi == std::numeric_limits<long long>::max();
+    // An upper end no one types (a type's limit: 2147483647, 9223372036854775807) reads
+    // better left out.
+    const bool open = hi >= std::numeric_limits<int>::max();
     failValue(option, text,
               open ? "must be >= " + std::to_string(lo)
                    : "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
