@@ -35,6 +35,7 @@ struct Options {
   std::vector<int> kMins{1, 5, 10};
   std::vector<double> budgetsUs;   ///< microseconds; +infinity is "none"
   std::vector<std::uint64_t> budgetPairs;  ///< ADB work budgets (node pairs); empty: none
+  bool exactCounting = false;      ///< trees count possible collision cells exactly (paper 3.4)
   std::string outDir = "tradeoff-results";
   bool plots = true;
   int repeats = 3;                 ///< timed runs per query (after one untimed warm-up)

@@ -42,6 +42,13 @@ TEST(Options, DefaultsFollowTheIssue) {
   EXPECT_EQ(o.budgetsUs[3], 100.0);
   EXPECT_TRUE(o.plots);
   EXPECT_TRUE(o.budgetPairs.empty());  // no work-budget runs unless asked for
+  EXPECT_FALSE(o.exactCounting);       // the paper's fast approximate counts
+}
+
+TEST(Options, ExactCountingIsASwitch) {
+  EXPECT_TRUE(parse({"--model", "knot", "--exact-counting"}).exactCounting);
+  EXPECT_NE(errorOf({"--model", "knot", "--exact-counting=1"}).find("exact-counting"),
+            std::string::npos);
 }
 
 TEST(Options, SourcesKeepCommandLineOrder) {
@@ -133,7 +140,7 @@ TEST(Options, HelpListsEveryFlagWithItsDefault) {
   const std::string help = usageText();
   for (const char* flag : {"--mesh", "--model", "--distances", "--rotations", "--seed",
                            "--methods", "--p-min", "--k-min", "--budget-us", "--budget-pairs",
-                           "--repeats", "--out", "--no-plots", "--help"}) {
+                           "--exact-counting", "--repeats", "--out", "--no-plots", "--help"}) {
     EXPECT_NE(help.find(flag), std::string::npos) << flag;
   }
   for (const char* value : {"0.4:2.0:0.1", "=200", "adb,exact,gimpact,fcl", "0.5,0.9,0.99",
