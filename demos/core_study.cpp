@@ -5,10 +5,13 @@
 //
 //   build/bin/adb-core-study [--triangles N[,N...]] [--poses N] [--p-min P] [--k-min K]
 //                            [--models a,b,...] [--exact-counting] [--grid G]
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,6 +20,7 @@
 #include "adb/support/mesh_generators.h"
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
+#include "common/command_line.h"
 
 namespace {
 
@@ -30,45 +34,72 @@ struct Options {
   int grid = adb::BuildSettings{}.gridResolution;
 };
 
+// Comma-separated items; "a,,b" and a trailing comma give empty items, which the callers
+// reject.
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream in(s);
   for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  if (s.empty() || s.back() == ',') out.emplace_back();
   return out;
 }
 
-[[noreturn]] void usage(int code) {
-  std::fprintf(stderr,
-               "usage: adb-core-study [--triangles N[,N...]] [--poses N] [--p-min P] "
-               "[--k-min K] [--models a,b,...] [--exact-counting] [--grid G]\n");
-  std::exit(code);
+std::string joined(const std::vector<std::string>& items, const char* separator = ",") {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : separator) + item;
+  return out;
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--triangles" && hasValue) {
-      o.triangles.clear();
-      for (const auto& t : split(argv[++i])) o.triangles.push_back(std::stoull(t));
-    } else if (arg == "--models" && hasValue) {
-      o.models = split(argv[++i]);
-    } else if (arg == "--poses" && hasValue) {
-      o.poses = std::atoi(argv[++i]);
-    } else if (arg == "--p-min" && hasValue) {
-      o.pMin = std::atof(argv[++i]);
-    } else if (arg == "--k-min" && hasValue) {
-      o.kMin = std::atoi(argv[++i]);
-    } else if (arg == "--grid" && hasValue) {
-      o.grid = std::atoi(argv[++i]);
-    } else if (arg == "--exact-counting") {
-      o.counting = adb::CellCounting::Exact;
-    } else {
-      usage(arg == "--help" ? 0 : 2);
+std::vector<std::size_t> parseTriangles(const std::string& text) {
+  std::vector<std::size_t> out;
+  for (const std::string& item : split(text)) {
+    out.push_back(static_cast<std::size_t>(
+        adb::demo::parseIntegerIn("--triangles", item, 1, std::numeric_limits<long long>::max())));
+  }
+  return out;
+}
+
+// Names checked here: makeModel would only fail after the models before it were measured.
+std::vector<std::string> parseModels(const std::string& text) {
+  const std::vector<std::string> known = adb::gen::modelNames();
+  const std::vector<std::string> out = split(text);
+  for (const std::string& name : out) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      adb::demo::failValue("--models", name,
+                           "unknown model; known models: " + joined(known, ", "));
     }
   }
-  return o;
+  return out;
+}
+
+// The ranges are those adb::validate and AdbTree's constructor accept (kMin >= 1, pMin in
+// [0, 1], grid 1..32): a bad value is a usage error rather than an exception mid-run.
+void addOptions(CLI::App& app, Options& o) {
+  app.description(
+      "adb-core-study: ADB (p_min, k_min) against the exact mode of the same tree, on the same\n"
+      "benchmark poses (distances 0.4..2.0 by 0.1, seed 1), for the generated models: error\n"
+      "rate among queries whose root boxes overlap, mean query time (best of 3 runs), node\n"
+      "pairs, stop reasons; a Markdown table (docs/core-results.md).");
+  adb::demo::addValueOption(
+      app, "--triangles", "N[,N...]", "about N triangles per model; each N is a row",
+      [&o](const std::string& v) { o.triangles = parseTriangles(v); }, "20000");
+  adb::demo::addValueOption(
+      app, "--models", "LIST", "generated models (" + joined(adb::gen::modelNames(), ", ") + ")",
+      [&o](const std::string& v) { o.models = parseModels(v); }, joined(o.models));
+  adb::demo::addIntegerOption(app, "--poses", o.poses, 1, std::numeric_limits<int>::max(),
+                              "random orientation pairs per distance");
+  adb::demo::addValueOption(
+      app, "--p-min", "P", "ADB's p_min, in [0, 1]",
+      [&o](const std::string& v) {
+        o.pMin = adb::demo::parseNumber("--p-min", v);
+        if (o.pMin < 0.0 || o.pMin > 1.0) adb::demo::failValue("--p-min", v, "must be in [0, 1]");
+      },
+      "0.99");
+  adb::demo::addIntegerOption(app, "--k-min", o.kMin, 1, 1000000, "ADB's k_min");
+  app.add_flag_callback("--exact-counting", [&o] { o.counting = adb::CellCounting::Exact; },
+                        "build the trees with exact cell counts (default approximate)")
+      ->disable_flag_override();
+  adb::demo::addIntegerOption(app, "--grid", o.grid, 1, 32, "cells per axis of each node's grid");
 }
 
 // The fastest of three runs: the machines are shared and noisy; the minimum is the query's.
@@ -123,7 +154,13 @@ Row measure(const adb::TriangleMesh& mesh, const adb::AdbTree& tree, const Optio
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  CLI::App app{"", "adb-core-study"};
+  Options o;
+  addOptions(app, o);
+  if (const std::optional<int> exitCode =
+          adb::demo::parseCommandLine(app, "adb-core-study", argc, argv)) {
+    return *exitCode;
+  }
   std::printf("ADB p_min %.2f, k_min %d (%s cell counts, grid %d) vs exact mode, distances "
               "0.4..2.0, %d poses each, best of 3 runs per query\n\n",
               o.pMin, o.kMin, o.counting == adb::CellCounting::Exact ? "exact" : "approximate",

@@ -13,7 +13,8 @@
 // It prints the weights as the C++ line collision_estimate.cpp holds and the expected
 // calibration error (10 bins) per model and budget, on the fit set and on the check meshes.
 //
-//   adb-calibrate [--triangles N] [--rotations N] [--mesh FILE ...]
+//   adb-calibrate [--triangles N] [--rotations N] [--mesh FILE ...] [--samples FILE]
+#include <CLI/CLI.hpp>
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -21,6 +22,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -31,6 +36,7 @@
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
 #include "adb/io/mesh_file.h"
+#include "common/command_line.h"
 #include "tradeoff/calibration.h"
 
 namespace {
@@ -330,37 +336,41 @@ void printQuality(const char* title, const std::vector<ModelSamples>& fitSet,
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::size_t triangles = 20000;
   int rotations = 40;
   std::vector<std::string> meshes;
   std::string samplesPath;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "adb-calibrate: %s needs a value\n", flag.c_str());
-      return 2;
-    }
-    const std::string value = argv[++i];
-    if (flag == "--triangles") {
-      triangles = std::strtoul(value.c_str(), nullptr, 10);
-    } else if (flag == "--rotations") {
-      rotations = std::atoi(value.c_str());
-    } else if (flag == "--mesh") {
-      meshes.push_back(value);
-    } else if (flag == "--samples") {
-      samplesPath = value;
-    } else {
-      std::fprintf(stderr, "adb-calibrate: unknown flag %s\n", flag.c_str());
-      return 2;
-    }
-  }
-  if (triangles < 1000 || rotations < 1) {
-    std::fprintf(stderr, "adb-calibrate: --triangles must be >= 1000, --rotations >= 1\n");
-    return 2;
-  }
+};
+
+void addOptions(CLI::App& app, Options& o) {
+  app.description(
+      "adb-calibrate: fits the collision estimate's weights (adb/core/collision_estimate.h) on\n"
+      "the generated models (knot, pipes, gears, lock, torus, sphere) and checks them on the\n"
+      "--mesh files; prints the weights as C++ and the calibration error per model and budget\n"
+      "(docs/probability-model.md).");
+  constexpr long long kNoLimit = std::numeric_limits<long long>::max();
+  adb::demo::addIntegerOption(app, "--triangles", o.triangles, 1000, kNoLimit,
+                              "about this many triangles per generated model");
+  adb::demo::addIntegerOption(app, "--rotations", o.rotations, 1,
+                              std::numeric_limits<int>::max(),
+                              "random orientation pairs per distance (0.4 to 2.0 by 0.1)");
+  adb::demo::addValueOption(app, "--mesh", "FILE",
+                            "a mesh file to check the fit on (not fitted); repeatable",
+                            [&o](const std::string& path) {
+                              // Checked here so that a typo fails before minutes of fitting.
+                              if (!std::filesystem::is_regular_file(path)) {
+                                adb::demo::failValue("--mesh", path, "no such file");
+                              }
+                              o.meshes.push_back(path);
+                            });
+  adb::demo::addValueOption(app, "--samples", "FILE",
+                            "write every sample (set, model, checkpoint, features, truth) "
+                            "as CSV",
+                            [&o](const std::string& path) { o.samplesPath = path; });
+}
+
+int run(const Options& o) {
   std::vector<ModelSamples> fitSet, fitQuality, checkSet, checkQuality;
   const auto add = [](Collected c, std::vector<ModelSamples>& budget,
                       std::vector<ModelSamples>& quality) {
@@ -368,13 +378,13 @@ int main(int argc, char** argv) {
     quality.push_back(std::move(c.quality));
   };
   for (const char* name : {"knot", "pipes", "gears", "lock", "torus", "sphere"}) {
-    add(collect(name, adb::gen::makeModel(name, triangles), rotations), fitSet, fitQuality);
+    add(collect(name, adb::gen::makeModel(name, o.triangles), o.rotations), fitSet, fitQuality);
   }
-  for (const std::string& path : meshes) {
-    add(collect(path, adb::io::loadMesh(path), rotations), checkSet, checkQuality);
+  for (const std::string& path : o.meshes) {
+    add(collect(path, adb::io::loadMesh(path), o.rotations), checkSet, checkQuality);
   }
-  if (!samplesPath.empty()) {
-    writeSamples(samplesPath, fitSet, checkSet);
+  if (!o.samplesPath.empty()) {
+    writeSamples(o.samplesPath, fitSet, checkSet);
   }
   const adb::EstimateWeights budgetWeights = fit(fitSet, true);
   const adb::EstimateWeights qualityWeights = fit(fitQuality, false);
@@ -387,4 +397,22 @@ int main(int argc, char** argv) {
   printQuality("Quality stops (k_min reached, or the queue emptied by pruning):", fitQuality,
                checkQuality, qualityWeights);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"", "adb-calibrate"};
+  Options o;
+  addOptions(app, o);
+  if (const std::optional<int> exitCode =
+          adb::demo::parseCommandLine(app, "adb-calibrate", argc, argv)) {
+    return *exitCode;
+  }
+  try {
+    return run(o);
+  } catch (const std::exception& e) {  // a --mesh file assimp cannot read, or bad geometry
+    std::fprintf(stderr, "adb-calibrate: error: %s\n", e.what());
+    return 1;
+  }
 }

@@ -11,7 +11,7 @@ const AdbTree& SharedTree::treeFor(const Model& model) {
   // allocated where an earlier one was.
   if (!m_tree || m_modelIndex != model.index) {
     m_tree.reset();  // free the old tree before building the next (1M-triangle models)
-    m_tree = std::make_unique<AdbTree>(model.mesh);
+    m_tree = std::make_unique<AdbTree>(model.mesh, m_settings);
     m_modelIndex = model.index;
   }
   return *m_tree;

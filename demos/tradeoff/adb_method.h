@@ -16,11 +16,15 @@ namespace adb::tradeoff {
 /// QueryScratch reused by all their queries (so queries do not allocate).
 class SharedTree {
  public:
-  /// The tree of `model`, built (default BuildSettings) when the model changes.
+  /// Trees are built with `settings` (validated by the tree's constructor).
+  explicit SharedTree(const BuildSettings& settings = {}) : m_settings(settings) {}
+
+  /// The tree of `model`, built when the model changes.
   const AdbTree& treeFor(const Model& model);
   QueryScratch& scratch() { return m_scratch; }
 
  private:
+  BuildSettings m_settings;
   std::size_t m_modelIndex = static_cast<std::size_t>(-1);
   std::unique_ptr<AdbTree> m_tree;
   QueryScratch m_scratch;

@@ -52,6 +52,13 @@ void studyModel(const Options& o, std::size_t index, StudyContext& context,
   writeReports(o, done);
 }
 
+// The trees' build settings: the defaults, with the cell counts --exact-counting asks for.
+adb::BuildSettings treeSettings(const Options& o) {
+  adb::BuildSettings s;
+  s.counting = o.exactCounting ? adb::CellCounting::Exact : adb::CellCounting::Approximate;
+  return s;
+}
+
 int run(const Options& o) {
   std::error_code ec;
   std::filesystem::create_directories(o.outDir, ec);
@@ -59,7 +66,7 @@ int run(const Options& o) {
     printError("--out '" + o.outDir + "': cannot create the directory: " + ec.message());
     return kInputError;
   }
-  auto tree = std::make_shared<SharedTree>();
+  auto tree = std::make_shared<SharedTree>(treeSettings(o));
   std::vector<std::unique_ptr<Method>> methods = makeMethods(o, tree);
   QueryCsv csv(o.outDir + "/queries.csv");
   adb::demo::Progress progress(queriesPerModel(o, methods.size()) * o.sources.size(), "queries");

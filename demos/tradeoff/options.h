@@ -1,21 +1,20 @@
 // The command line of adb-tradeoff: what to measure (models, distances, rotations, methods,
 // ADB parameter sweeps), where to write it, and the strict parsing of every value (numbers,
-// lists, ranges a:b:step) with one clear error naming the flag and the value.
+// lists, ranges a:b:step) with one clear error naming the flag and the value. CLI11 reads
+// the flags (demos/common/command_line.h).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "common/command_line.h"
 
 namespace adb::tradeoff {
 
 /// A usage error: a bad flag or value. main() prints it and exits 2.
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using UsageError = demo::UsageError;
 
 /// One model to study, in command-line order: a mesh file or a generated model.
 struct ModelSource {
@@ -36,6 +35,7 @@ struct Options {
   std::vector<int> kMins{1, 5, 10};
   std::vector<double> budgetsUs;   ///< microseconds; +infinity is "none"
   std::vector<std::uint64_t> budgetPairs;  ///< ADB work budgets (node pairs); empty: none
+  bool exactCounting = false;      ///< trees count possible collision cells exactly (paper 3.4)
   std::string outDir = "tradeoff-results";
   bool plots = true;
   int repeats = 3;                 ///< timed runs per query (after one untimed warm-up)
@@ -48,10 +48,12 @@ inline constexpr std::size_t kMinModelTriangles = 1000;
 inline constexpr std::size_t kMaxModelTriangles = 1000000;
 inline constexpr std::size_t kDefaultModelTriangles = 20000;
 
-/// Parses argv. Throws UsageError naming the flag and the offending value.
+/// Parses argv. Throws UsageError naming the flag and the offending value; with --help (or
+/// -h) returns at once with `help` set.
 Options parseOptions(int argc, const char* const* argv);
 
-/// The --help text (flags, defaults, timing policy).
+/// The --help text: every flag with its description and default, the timing and
+/// calibration policy, the exit status.
 std::string usageText();
 
 /// Short file name without directory and extension ("meshes/bunny.ply" -> "bunny").

@@ -41,7 +41,7 @@ TEST(BadInput, MalformedNumbersAndRangesAreUsageErrorsNamingFlagAndValue) {
   expectUsageError({"--model", "knot:1000", "--p-min", "1.5"}, {"--p-min", "1.5"});
   expectUsageError({"--model", "knot:1000", "--k-min", "0"}, {"--k-min", "0"});
   expectUsageError({"--model", "knot:1000", "--budget-us", "abc"}, {"--budget-us", "abc"});
-  expectUsageError({"--model", "knot:1000", "--seed"}, {"--seed", "missing value"});
+  expectUsageError({"--model", "knot:1000", "--seed"}, {"--seed: ", "missing"});
   expectUsageError({"--model", "knot:1000", "--budget-pairs", "0"}, {"--budget-pairs", "'0'"});
 }
 

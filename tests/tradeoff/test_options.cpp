@@ -42,6 +42,13 @@ TEST(Options, DefaultsFollowTheIssue) {
   EXPECT_EQ(o.budgetsUs[3], 100.0);
   EXPECT_TRUE(o.plots);
   EXPECT_TRUE(o.budgetPairs.empty());  // no work-budget runs unless asked for
+  EXPECT_FALSE(o.exactCounting);       // the paper's fast approximate counts
+}
+
+TEST(Options, ExactCountingIsASwitch) {
+  EXPECT_TRUE(parse({"--model", "knot", "--exact-counting"}).exactCounting);
+  EXPECT_NE(errorOf({"--model", "knot", "--exact-counting=1"}).find("exact-counting"),
+            std::string::npos);
 }
 
 TEST(Options, SourcesKeepCommandLineOrder) {
@@ -95,8 +102,10 @@ TEST(Options, BadBudgetPairsGiveOneErrorNamingTheFlagAndTheValue) {
             std::string::npos);
   EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs", "5,5"}).find("twice"),
             std::string::npos);
-  EXPECT_NE(errorOf({"--model", "knot", "--budget-pairs"}).find("--budget-pairs: missing value"),
-            std::string::npos);
+  // A flag without its value: CLI11's wording ("--budget-pairs: 1 required LIST missing").
+  const std::string missing = errorOf({"--model", "knot", "--budget-pairs"});
+  EXPECT_EQ(missing.rfind("--budget-pairs: ", 0), 0u) << missing;
+  EXPECT_NE(missing.find("missing"), std::string::npos) << missing;
 }
 
 TEST(Options, NewMethodsAreOptInAndBudgetedOnesNeedAFiniteBudget) {
@@ -123,6 +132,36 @@ TEST(Options, HelpNamesTheNewMethodsAndFlag) {
                            "root-boxes", "reliability.csv", "ece"}) {
     EXPECT_NE(help.find(word), std::string::npos) << word;
   }
+}
+
+// --help is built by CLI11 from the flags themselves: every flag is listed, with the defaults
+// the parser really uses.
+TEST(Options, HelpListsEveryFlagWithItsDefault) {
+  const std::string help = usageText();
+  for (const char* flag : {"--mesh", "--model", "--distances", "--rotations", "--seed",
+                           "--methods", "--p-min", "--k-min", "--budget-us", "--budget-pairs",
+                           "--exact-counting", "--repeats", "--out", "--no-plots", "--help"}) {
+    EXPECT_NE(help.find(flag), std::string::npos) << flag;
+  }
+  for (const char* value : {"0.4:2.0:0.1", "=200", "adb,exact,gimpact,fcl", "0.5,0.9,0.99",
+                            "1,5,10", "none,5,20,100", "=3", "tradeoff-results"}) {
+    EXPECT_NE(help.find(value), std::string::npos) << value;
+  }
+  // --help needs nothing else (not even a model) and stops there.
+  EXPECT_TRUE(parse({"--help"}).help);
+  EXPECT_TRUE(parse({"-h"}).help);
+}
+
+TEST(Options, ARepeatedFlagKeepsItsLastValue) {
+  const Options o = parse({"--model", "knot", "--rotations", "5", "--rotations=7"});
+  EXPECT_EQ(o.rotations, 7);
+}
+
+// A switch: "--no-plots=false" is an error, not a double negative (CLI11 names the flag
+// without its dashes here).
+TEST(Options, NoPlotsTakesNoValue) {
+  const std::string e = errorOf({"--model", "knot", "--no-plots=false"});
+  EXPECT_NE(e.find("no-plots"), std::string::npos) << e;
 }
 
 }  // namespace
