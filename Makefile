@@ -4,7 +4,7 @@
 #   make test   build and run the test suite
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all deps build demo test test-asan bench clean
+.PHONY: all deps build demo test test-asan fuzz bench clean
 
 all: build
 
@@ -33,8 +33,16 @@ test-asan: deps
 	cmake --build --preset asan-ubsan -j $(JOBS)
 	ctest --preset asan-ubsan -j $(JOBS)
 
+# libFuzzer on every fuzz target for FUZZ_SECONDS each (tests/fuzz/run_fuzz.sh; clang).
+FUZZ_SECONDS ?= 60
+fuzz:
+	@bash cmake/install-deps.sh fuzz
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
+	bash tests/fuzz/run_fuzz.sh $(FUZZ_SECONDS)
+
 bench: build
 	./build/bin/adb-bench-core
 
 clean:
-	rm -rf build build-debug build-asan
+	rm -rf build build-debug build-asan build-fuzz

@@ -18,6 +18,11 @@ packages=(
   python3-matplotlib       # plots of the study
 )
 
+# `install-deps.sh fuzz`: also clang and its libFuzzer runtime, for make fuzz only.
+if [ "${1:-}" = "fuzz" ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

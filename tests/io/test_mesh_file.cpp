@@ -29,6 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using adb::Vec3;
+using adb::io::LoadLimits;
 using adb::io::LoadReport;
 using adb::io::MeshFileError;
 using adb::io::loadMesh;
@@ -274,14 +275,14 @@ TEST_F(MeshFileTest, GarbageIsAnError) {
   std::string bytes(4000, '\0');
   for (char& c : bytes) c = static_cast<char>(random() & 0xff);
   // Under an unknown extension assimp tries its readers on the content (these bytes end in the
-  // OBJ reader, which refuses them); the STL and PLY readers refuse them; the OBJ reader takes
-  // text as commands it does not know and finds no faces.
+  // OBJ reader, which refuses them); the STL reader refuses them, and so does adb's PLY reader;
+  // the OBJ reader takes text as commands it does not know and finds no faces.
   const std::string bin = write("garbage.bin", bytes);
   expectError([&] { loadMesh(bin); }, {bin, "assimp cannot read it"});
   const std::string stl = write("garbage.stl", bytes);
   expectError([&] { loadMesh(stl); }, {stl, "assimp cannot read it"});
   const std::string ply = write("garbage.ply", bytes);
-  expectError([&] { loadMesh(ply); }, {ply, "assimp cannot read it"});
+  expectError([&] { loadMesh(ply); }, {ply, "not a PLY file"});
   const std::string obj = write("prose.obj", "this is not a mesh\njust some text\n");
   expectError([&] { loadMesh(obj); }, {obj, "no triangles"});
 }
@@ -315,19 +316,90 @@ TEST_F(MeshFileTest, NanCoordinateInObjIsAnErrorNamingTheVertex) {
                "vertex 0 of assimp mesh 0"});
 }
 
+// PLY is read by adb's own reader (not assimp's): its vertex numbers are the file's.
 TEST_F(MeshFileTest, NanAndInfinityInPlyAreErrorsNamingTheVertex) {
   const std::string nan = write("nan.ply", plyHeader(3, 1) + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
-  expectError([&] { loadMesh(nan); },
-              {nan, "vertex 1 has a non-finite coordinate (1, nan, 0)",
-               "vertex 1 of assimp mesh 0"});
+  expectError([&] { loadMesh(nan); }, {nan, "vertex 1 has a non-finite coordinate (1, nan, 0)"});
   const std::string inf = write("inf.ply", plyHeader(3, 1) + "0 0 0\n1 0 0\n0 0 -inf\n3 0 1 2\n");
-  expectError([&] { loadMesh(inf); },
-              {inf, "vertex 2 has a non-finite coordinate (0, 0, -inf)",
-               "vertex 2 of assimp mesh 0"});
+  expectError([&] { loadMesh(inf); }, {inf, "vertex 2 has a non-finite coordinate (0, 0, -inf)"});
+}
+
+// Files from anywhere (issue 13): what a damaged PLY or OFF header declares is checked
+// against the file's size and the limits before anything is read or reserved.
+TEST_F(MeshFileTest, APlyHeaderCutShortIsAnErrorNotAHang) {
+  // The 41-byte file that made assimp's PLY reader loop for over a minute.
+  const std::string cut = write("cut.ply", "ply\nformat ascii 1.0\nelement vertex 4\nprop");
+  expectError([&] { loadMesh(cut); }, {cut, "no end_header"});
+}
+
+TEST_F(MeshFileTest, DeclaredCountsBeyondTheFileOrTheLimitsAreErrors) {
+  const std::string big = write("big.ply", plyHeader(1000000000, 1) + "0 0 0\n");
+  expectError([&] { loadMesh(big); }, {big, "element 'vertex' declares 1000000000", "LoadLimits::maxVertices"});
+  const std::string lying = write("lying.ply", plyHeader(100000, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expectError([&] { loadMesh(lying); }, {lying, "declares 100000", "bytes each", "left in the file"});
+  const std::string off = write("lying.off", "OFF\n5000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expectError([&] { loadMesh(off); }, {off, "declares 5000000 vertices", "bytes can hold"});
+  // The limits are the caller's: a cube of 6 quads under maxFaces 5, then under the defaults.
+  std::string cube = plyHeader(8, 6) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n";
+  cube += "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+  const std::string file = write("cube.ply", cube);
+  LoadLimits tight;
+  tight.maxFaces = 5;
+  expectError([&] { loadMesh(file, nullptr, tight); }, {file, "LoadLimits::maxFaces"});
+  EXPECT_EQ(loadMesh(file).triangleCount(), 12u);
+  LoadLimits corners;
+  corners.maxFaceCorners = 3;
+  expectError([&] { loadMesh(file, nullptr, corners); }, {file, "4 corners", "LoadLimits::maxFaceCorners"});
+}
+
+TEST_F(MeshFileTest, BinaryPlyBothByteOrdersAndOffVariantsLoad) {
+  const float v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int q[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (const bool big : {false, true}) {
+    std::string ply = "ply\nformat " + std::string(big ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                      "property uchar red\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
+    auto put = [&](const void* p, std::size_t n) {
+      std::string b(static_cast<const char*>(p), n);
+      if (big) std::reverse(b.begin(), b.end());
+      ply += b;
+    };
+    for (const auto& p : v) {
+      for (float x : p) put(&x, 4);
+      ply += '\x7f';  // red: read past
+    }
+    for (const auto& f : q) {
+      ply += '\x04';
+      for (int i : f) put(&i, 4);
+    }
+    const adb::TriangleMesh mesh = loadMesh(write(big ? "be.ply" : "le.ply", ply));
+    EXPECT_EQ(mesh.triangleCount(), 12u);
+    EXPECT_EQ(mesh.vertices().size(), 8u);
+    EXPECT_EQ(mesh.vertices()[6], Vec3(1, 1, 1));
+  }
+  // NOFF: a normal after each position; a colour after a face; comments anywhere.
+  const std::string noff = write("normals.off",
+      "NOFF # a tetrahedron\n4 4 6\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n0 0 1 1 1 1\n"
+      "3 0 2 1 255 0 0\n3 0 1 3\n# the last two\n3 1 2 3\n3 0 3 2\n");
+  EXPECT_EQ(loadMesh(noff).triangleCount(), 4u);
+  const std::string fourD = write("four.off", "4OFF\n1 0 0\n0 0 0 0\n");
+  expectError([&] { loadMesh(fourD); }, {fourD, "4D OFF"});
+}
+
+TEST_F(MeshFileTest, FromMemoryEveryFormatTheFilesTake) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_EQ(adb::io::loadMeshFromMemory(obj.data(), obj.size(), "obj", "mem.obj").triangleCount(), 1u);
+  const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(adb::io::loadMeshFromMemory(off.data(), off.size(), "off", "mem.off").triangleCount(), 1u);
+  expectError([&] { adb::io::loadMeshFromMemory(obj.data(), 0, "obj", "empty.obj"); }, {"empty.obj", "no data"});
+  // Under an extension assimp does not know, data with "ply" near its start goes to adb's PLY
+  // reader, not assimp's (which would pick it by that word and trust it).
+  const std::string odd = "xx ply\n";
+  expectError([&] { adb::io::loadMeshFromMemory(odd.data(), odd.size(), "xyz", "odd.xyz"); }, {"odd.xyz", "not a PLY file"});
 }
 
 TEST_F(MeshFileTest, OutOfRangeFaceIndexIsAnError) {
-  // The OBJ reader refuses it itself; the PLY reader passes it on, and the loader refuses it.
+  // assimp's OBJ reader refuses it itself; adb's PLY reader names the face.
   const std::string obj = write("oob.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 5\n");
   expectError([&] { loadMesh(obj); }, {obj, "out of range"});
   const std::string ply = write("oob.ply", plyHeader(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");

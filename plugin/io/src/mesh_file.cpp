@@ -7,7 +7,9 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <iterator>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +18,9 @@
 #include <system_error>
 
 #include "assimp_log_capture.h"
-#include "declared_counts.h"
+#include "off_reader.h"
+#include "ply_reader.h"
+#include "polygon_mesh.h"
 #include "scene_checks.h"
 #include "scene_flatten.h"
 
@@ -50,10 +54,6 @@ void checkReadable(const std::string& path, const LoadLimits& limits) {
     throw MeshFileError(path + ": " + std::to_string(size) + " bytes, more than the limit of " +
                         std::to_string(limits.maxFileBytes) + " (LoadLimits::maxFileBytes)");
   }
-  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(size, detail::kHeaderBytes)), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  detail::checkDeclaredCounts(head.data(), head.size(), size, path, limits);
 }
 
 // assimp's scene, read by `read` (with no post-processing), checked, validated and
@@ -90,10 +90,77 @@ std::unique_ptr<aiScene> importScene(Read read, const std::string& name, const L
 adb::TriangleMesh meshOf(std::unique_ptr<aiScene> scene, std::vector<std::string> warnings,
                          const std::string& path, LoadReport* report);
 
+// Whether assimp reads files with this extension (lower case, no dot): asked once.
+bool assimpExtension(const std::string& extension) {
+  static const std::string list = [] {
+    std::string l;
+    Assimp::Importer().GetExtensionList(l);  // "*.3ds;*.obj;..."
+    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ";" + l + ";";
+  }();
+  return !extension.empty() && list.find(";*." + extension + ";") != std::string::npos;
+}
+
+enum class OwnFormat { None, Ply, Off };
+
+// Which of adb's own readers takes the data. assimp picks its reader by the extension, and
+// for an extension it does not know by searching the first 200 bytes for a format's word: a
+// file with "ply" or "off" there would reach assimp's PLY or OFF reader (ply_reader.h and
+// off_reader.h say why those must not read a file from anywhere), so such data is ours.
+OwnFormat ownFormat(const char* data, std::size_t size, const std::string& extension) {
+  if (extension == "ply") return OwnFormat::Ply;
+  if (extension == "off") return OwnFormat::Off;
+  if (assimpExtension(extension)) return OwnFormat::None;
+  if (detail::looksLikePly(data, size)) return OwnFormat::Ply;
+  if (detail::looksLikeOff(data, size)) return OwnFormat::Off;
+  std::string head(data, std::min<std::size_t>(size, 200));
+  for (char& c : head) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (head.find("ply") != std::string::npos) return OwnFormat::Ply;
+  if (head.find("off") != std::string::npos) return OwnFormat::Off;
+  return OwnFormat::None;
+}
+
+adb::TriangleMesh readOwnFormat(OwnFormat format, const char* data, std::size_t size,
+                                const std::string& name, LoadReport* report,
+                                const LoadLimits& limits) {
+  detail::PolygonMesh polygons = format == OwnFormat::Ply ? detail::readPly(data, size, name, limits)
+                                                          : detail::readOff(data, size, name, limits);
+  return detail::meshFromPolygons(std::move(polygons), name, report);
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  if (!e.empty()) e.erase(0, 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+// The whole file, for adb's own readers (its size is within the limits).
+std::string contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.eof() && in.fail()) throw MeshFileError(path + ": read failed");
+  return bytes;
+}
+
+std::string head(const std::string& path) {
+  std::string bytes(200, '\0');
+  std::ifstream in(path, std::ios::binary);
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  return bytes;
+}
+
 }  // namespace
 
 adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report, const LoadLimits& limits) {
   checkReadable(path, limits);
+  const std::string start = head(path);
+  const OwnFormat own = ownFormat(start.data(), start.size(), lowerExtension(path));
+  if (own != OwnFormat::None) {
+    const std::string bytes = contents(path);
+    return readOwnFormat(own, bytes.data(), bytes.size(), path, report, limits);
+  }
   std::vector<std::string> warnings;
   std::unique_ptr<aiScene> scene = importScene(
       [&](Assimp::Importer& importer) { return importer.ReadFile(path, kReadAsIs); }, path,
@@ -109,8 +176,11 @@ adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
     throw MeshFileError(name + ": " + std::to_string(size) + " bytes, more than the limit of " +
                         std::to_string(limits.maxFileBytes) + " (LoadLimits::maxFileBytes)");
   }
+  std::string hint = formatHint;
+  for (char& c : hint) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const char* bytes = static_cast<const char*>(data);
-  detail::checkDeclaredCounts(bytes, std::min(size, detail::kHeaderBytes), size, name, limits);
+  const OwnFormat own = ownFormat(bytes, size, hint);
+  if (own != OwnFormat::None) return readOwnFormat(own, bytes, size, name, report, limits);
   std::vector<std::string> warnings;
   std::unique_ptr<aiScene> scene = importScene(
       [&](Assimp::Importer& importer) {
