@@ -13,8 +13,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <optional>
 
 #include "adb/io/mesh_file.h"
+#include "common/command_line.h"
 #include "pile/pile_run.h"
 #include "scene_run/scene_run.h"
 
@@ -157,16 +159,12 @@ int runScene(const CLI::App& app, Options& o) {
 
 int main(int argc, char** argv) {
   CLI::App app{"adb-demo: scenes headless (--scene FILE), or a pile of generated bodies or mesh "
-               "files in a bin"};
+               "files in a bin", "adb-demo"};
   Options o;
   addOptions(app, o);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "adb-demo: %s\n", e.what());
-    return 2;
+  if (const std::optional<int> exitCode =
+          adb::demo::parseCommandLine(app, "adb-demo", argc, argv)) {
+    return *exitCode;
   }
   return o.scene.scene.empty() ? runPile(app, o) : runScene(app, o);
 }
