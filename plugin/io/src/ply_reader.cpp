@@ -1,6 +1,7 @@
 #include "ply_reader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 #include <vector>
@@ -65,6 +66,10 @@ std::size_t bytesOf(Type t) {
 }
 
 bool isInteger(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+// A whole number in [0, max] (a count or an index read as a double); the range is checked
+// before any conversion to an integer type, which would be undefined beyond it.
+bool isCount(double v, double max) { return v >= 0 && v <= max && v == std::floor(v); }
 
 // The fewest bytes one element can take: a list at its count alone, an ascii value at a
 // character and a separator.
@@ -273,7 +278,7 @@ PolygonMesh readPly(const char* data, std::size_t size, const std::string& name,
           if (vertex && k == roles.z) position.z() = v;
           continue;
         }
-        if (!values.read(p.countType, v) || !(v >= 0) || v != static_cast<double>(static_cast<std::uint64_t>(v))) {
+        if (!values.read(p.countType, v) || !isCount(v, 4294967295.0)) {
           fail(name, where + ": list '" + p.name + "' has no valid count");
         }
         const auto n = static_cast<std::uint64_t>(v);
@@ -286,7 +291,7 @@ PolygonMesh readPly(const char* data, std::size_t size, const std::string& name,
         for (std::uint64_t j = 0; j < n; ++j) {
           if (!values.read(p.type, v)) fail(name, where + ": list '" + p.name + "' is cut short");
           if (!indices) continue;
-          if (!(v >= 0) || v >= 4294967295.0 || v != static_cast<double>(static_cast<std::uint64_t>(v))) {
+          if (!isCount(v, 4294967294.0)) {
             fail(name, where + ": vertex index " + std::to_string(v) + " is not an index");
           }
           out.corners.push_back(static_cast<std::uint32_t>(v));

@@ -12,7 +12,7 @@ adb::TriangleMesh meshFromPolygons(PolygonMesh p, const std::string& name, LoadR
   const std::size_t vertices = p.vertices.size();
   for (std::size_t f = 0; f < p.faceSizes.size(); ++f) {
     const std::uint32_t n = p.faceSizes[f];
-    const std::uint32_t* c = &p.corners[at];
+    const std::uint32_t* c = p.corners.data() + at;  // no element when the face has none
     at += n;
     for (std::uint32_t k = 0; k < n; ++k) {
       if (c[k] >= vertices) {
