@@ -16,6 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   limits.maxFileBytes = 1 << 20;
   limits.maxVertices = 1 << 20;
   limits.maxFaces = 1 << 20;
+  limits.maxReadSeconds = 5;  // a reader that hangs is stopped and named sooner
   try {
     const adb::TriangleMesh mesh =
         adb::io::loadMeshFromMemory(data, size, ADB_FUZZ_FORMAT, "fuzz." ADB_FUZZ_FORMAT, nullptr, limits);

@@ -398,6 +398,35 @@ TEST_F(MeshFileTest, FromMemoryEveryFormatTheFilesTake) {
   expectError([&] { adb::io::loadMeshFromMemory(odd.data(), odd.size(), "xyz", "odd.xyz"); }, {"odd.xyz", "not a PLY file"});
 }
 
+// assimp's readers run in a child process: inputs on which fuzzing made them abort (3MF: a
+// failed assertion in its zip reader), overflow a buffer or loop (glTF) are one MeshFileError,
+// and the caller goes on.
+TEST_F(MeshFileTest, AssimpReadersThatCrashOrHangAreContained) {
+  const std::string corpus = ADB_FUZZ_CORPUS;
+  const std::string zip = corpus + "/mesh_3mf/regression_assimp_3mf_zip_assert.3mf";
+  expectError([&] { loadMesh(zip); }, {zip, "the reader crashed on it"});
+  const std::string gltf = corpus + "/mesh_gltf/regression_assimp_gltf_overflow_or_hang.gltf";
+  LoadLimits quick;
+  quick.maxReadSeconds = 2;
+  try {
+    loadMesh(gltf, nullptr, quick);
+    ADD_FAILURE() << "no error";
+  } catch (const MeshFileError& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("took longer than 2 s") != std::string::npos ||
+                what.find("the reader crashed on it") != std::string::npos) << what;
+  }
+  // A sound file read with too little time: the limit is named.
+  std::string obj;
+  for (int i = 0; i < 20000; ++i) obj += "v " + std::to_string(i) + " 0 0\n";
+  for (int i = 1; i + 2 <= 20000; ++i) obj += "f " + std::to_string(i) + " " + std::to_string(i + 1) + " " + std::to_string(i + 2) + "\n";
+  const std::string big = write("big.obj", obj);
+  LoadLimits instant;
+  instant.maxReadSeconds = 1e-4;
+  expectError([&] { loadMesh(big, nullptr, instant); }, {big, "LoadLimits::maxReadSeconds"});
+  EXPECT_GT(loadMesh(big).triangleCount(), 19000u);  // and with the default, it loads
+}
+
 TEST_F(MeshFileTest, OutOfRangeFaceIndexIsAnError) {
   // assimp's OBJ reader refuses it itself; adb's PLY reader names the face.
   const std::string obj = write("oob.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 5\n");
@@ -482,11 +511,20 @@ TEST_F(MeshFileTest, ApplicationsOwnAssimpLoggerIsKept) {
   } cleanup{&stream};
 
   const std::string file = write("painted.obj", objWithMissingMaterial());
+  // Read in a child process (the default), assimp logs to the child's copy of the logger:
+  // the warnings come back in the report, and the application's logger is left in place.
   LoadReport report;
   loadMesh(file, &report);
   EXPECT_TRUE(anyContains(report.warnings, "missing.mtl"));
   EXPECT_EQ(Assimp::DefaultLogger::get(), logger);  // not replaced
-  EXPECT_TRUE(anyContains(stream.lines, "missing.mtl"));  // and its streams still hear
+  // Read in this process, its streams hear the load too.
+  LoadLimits inProcess;
+  inProcess.isolate = false;
+  LoadReport local;
+  loadMesh(file, &local, inProcess);
+  EXPECT_TRUE(anyContains(local.warnings, "missing.mtl"));
+  EXPECT_EQ(Assimp::DefaultLogger::get(), logger);
+  EXPECT_TRUE(anyContains(stream.lines, "missing.mtl"));
 }
 
 }  // namespace

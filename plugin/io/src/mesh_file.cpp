@@ -18,6 +18,7 @@
 #include <system_error>
 
 #include "assimp_log_capture.h"
+#include "isolated_read.h"
 #include "off_reader.h"
 #include "ply_reader.h"
 #include "polygon_mesh.h"
@@ -90,6 +91,24 @@ std::unique_ptr<aiScene> importScene(Read read, const std::string& name, const L
 adb::TriangleMesh meshOf(std::unique_ptr<aiScene> scene, std::vector<std::string> warnings,
                          const std::string& path, LoadReport* report);
 
+// A mesh through assimp: read by `read`, checked, triangulated, flattened and validated, in a
+// child process unless the limits say otherwise (isolated_read.h says why).
+template <class Read>
+adb::TriangleMesh assimpMesh(Read read, const std::string& name, LoadReport* report,
+                             const LoadLimits& limits) {
+  auto load = [&] {
+    std::vector<std::string> warnings;
+    std::unique_ptr<aiScene> scene = importScene(read, name, limits, warnings);
+    LoadReport r;
+    adb::TriangleMesh mesh = meshOf(std::move(scene), std::move(warnings), name, &r);
+    return std::make_pair(std::move(mesh), std::move(r));
+  };
+  if (limits.isolate) return detail::readIsolated(load, name, report, limits);
+  auto loaded = load();
+  if (report) *report = std::move(loaded.second);
+  return std::move(loaded.first);
+}
+
 // Whether assimp reads files with this extension (lower case, no dot): asked once.
 bool assimpExtension(const std::string& extension) {
   static const std::string list = [] {
@@ -161,11 +180,9 @@ adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report, const Lo
     const std::string bytes = contents(path);
     return readOwnFormat(own, bytes.data(), bytes.size(), path, report, limits);
   }
-  std::vector<std::string> warnings;
-  std::unique_ptr<aiScene> scene = importScene(
+  return assimpMesh(
       [&](Assimp::Importer& importer) { return importer.ReadFile(path, kReadAsIs); }, path,
-      limits, warnings);
-  return meshOf(std::move(scene), std::move(warnings), path, report);
+      report, limits);
 }
 
 adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
@@ -181,13 +198,11 @@ adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
   const char* bytes = static_cast<const char*>(data);
   const OwnFormat own = ownFormat(bytes, size, hint);
   if (own != OwnFormat::None) return readOwnFormat(own, bytes, size, name, report, limits);
-  std::vector<std::string> warnings;
-  std::unique_ptr<aiScene> scene = importScene(
+  return assimpMesh(
       [&](Assimp::Importer& importer) {
         return importer.ReadFileFromMemory(data, size, kReadAsIs, formatHint.c_str());
       },
-      name, limits, warnings);
-  return meshOf(std::move(scene), std::move(warnings), name, report);
+      name, report, limits);
 }
 
 namespace {

@@ -6,11 +6,14 @@
 // indices, no triangles) is an error, and what assimp only warns about (a missing material
 // file, say) is handed back in LoadReport::warnings.
 //
-// Files come from anywhere, so nothing in them is trusted: the counts a PLY or OFF header
-// declares are checked against the file's size and the limits before assimp reads the body;
-// assimp reads with no post-processing; its scene is validated (assimp's
-// ValidateDataStructure, then every face's size and indices) and only then triangulated.
-// Every failure is a MeshFileError (docs/reliability.md).
+// Files come from anywhere, so nothing in them is trusted (docs/reliability.md):
+// - PLY and OFF are read by adb: every count a header declares is checked against the bytes
+//   left and the limits before anything is reserved, every value as it is read.
+// - Every other format is read by assimp in a child process (LoadLimits::isolate): a reader
+//   that crashes, loops or allocates without bound on a damaged file takes only the child down.
+//   assimp reads with no post-processing; its scene is checked (every face's size and indices,
+//   the node graph), validated (assimp's ValidateDataStructure) and only then triangulated.
+// Every failure is one MeshFileError naming the file and what is wrong.
 #pragma once
 
 #include <cstddef>
@@ -36,6 +39,13 @@ struct LoadLimits {
   std::uint64_t maxVertices = std::uint64_t(1) << 27;   ///< 134M, declared or read
   std::uint64_t maxFaces = std::uint64_t(1) << 27;      ///< 134M, declared or read
   std::uint32_t maxFaceCorners = 4096;  ///< a polygon's corners (triangulated: corners - 2)
+  /// Formats read through assimp are read in a child process: a reader that crashes, loops
+  /// or allocates without bound on a damaged file takes only the child down, and the load is
+  /// one MeshFileError (docs/reliability.md). Off: read in this process (faster by a fork, for
+  /// files known to be sound). PLY and OFF are read by adb, in this process, either way.
+  bool isolate = true;
+  double maxReadSeconds = 20.0;                           ///< the child's time (isolated)
+  std::uint64_t maxReadBytes = std::uint64_t(16) << 30;   ///< the child's address space
 };
 
 /// What a successful load found besides the mesh.
@@ -54,8 +64,9 @@ struct LoadReport {
 /// Throws MeshFileError for: missing/unreadable file, a file assimp cannot parse, a file with
 /// no triangles (points/lines only or empty), NaN/inf coordinates (message names the file and
 /// the vertex, re-wrapping the core's adb::MeshError), out-of-range indices.
-/// Thread-safe: concurrent calls are serialised (assimp's logger is one per process; see
-/// src/assimp_log_capture.h).
+/// Thread-safe: concurrent reads in this process are serialised (assimp's logger is one per
+/// process; see src/assimp_log_capture.h); isolated reads run in their own processes, and an
+/// application's own assimp logger hears only the reads made in this process.
 adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report = nullptr,
                            const LoadLimits& limits = {});
 
