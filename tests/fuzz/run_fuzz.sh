@@ -29,8 +29,8 @@ for t in "${targets[@]}"; do
   "$root/build-fuzz/bin/fuzz-$t" "$corpus" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 "${extra[@]}" > "$log" 2>&1
   code=$?
-  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
-  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$')
+  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | tail -1 | grep -o '[0-9]*$')
   found=$(find "$findings" -type f | wc -l)
   printf '%-12s %12s %10s %s\n' "$t" "${execs:-?}" "${rate:-?}" "$found"
   if [ $code -ne 0 ] || [ "$found" -gt 0 ]; then
