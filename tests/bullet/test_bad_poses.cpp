@@ -90,6 +90,38 @@ TEST(BadPoses, ANaNBodyIsNamedOncePerStepAndItsNeighboursStayFinite) {
   }
 }
 
+// A NaN velocity makes a NaN pose only at the end of the step: the solver would first carry
+// it through the body's adb contacts to the bodies it touches. It is refused like a NaN pose,
+// from the step the velocity goes bad.
+TEST(BadPoses, ANaNVelocityIsNamedAtOnceAndItsNeighboursStayFinite) {
+  BadPoseScene scene;
+  for (int i = 0; i < 30; ++i) scene.step();  // settle
+  btRigidBody* bad = scene.tori[1];
+  // It touches torus 0: the contact the NaN would cross.
+  bool touching = false;
+  btDispatcher& dispatcher = *scene.world.dispatcher;
+  for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
+    const bool pair = (m->getBody0() == bad && m->getBody1() == scene.tori[0]) ||
+                      (m->getBody1() == bad && m->getBody0() == scene.tori[0]);
+    touching = touching || (pair && m->getNumContacts() > 0);
+  }
+  ASSERT_TRUE(touching);
+  bad->setAngularVelocity(btVector3(0, std::numeric_limits<btScalar>::quiet_NaN(), 0));
+  for (int i = 0; i < 10; ++i) {
+    ASSERT_NO_THROW(scene.step());
+    const FrameStats& stats = scene.world.adbDispatcher->lastFrameStats();
+    ASSERT_EQ(stats.badPoseBodies, 1u) << "step " << i;
+    EXPECT_EQ(stats.badPoses[0].body, bad);
+    EXPECT_EQ(stats.badPoses[0].defect, PoseDefect::NonFinite);
+    for (std::size_t k = 0; k < scene.tori.size(); ++k) {
+      if (scene.tori[k] != bad) {
+        ASSERT_TRUE(finite(*scene.tori[k])) << "torus " << k << ", step " << i;
+      }
+    }
+  }
+}
+
 // Bullet's integration re-orthonormalises a dynamic body's basis at the end of a step: the
 // scaled basis is written again before every step, as broken user code would.
 TEST(BadPoses, AScaledBasisIsRefusedAndTheRestGoesOn) {
