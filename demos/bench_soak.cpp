@@ -18,7 +18,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -26,6 +28,7 @@
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/support/mesh_generators.h"
+#include "common/command_line.h"
 #include "common/progress.h"
 
 namespace {
@@ -41,6 +44,33 @@ struct Options {
   std::uint64_t budgetPairs = 0;
   double budgetMicros = 0;
 };
+
+void addOptions(CLI::App& app, Options& o) {
+  app.description(
+      "adb-bench-soak: a pile whose bodies come and go (shared and own MeshData, scaled\n"
+      "shapes, Bullet primitives); RSS and time per step every interval, and a verdict.");
+  constexpr long long kNoLimit = std::numeric_limits<long long>::max();
+  constexpr long long kMaxInt = std::numeric_limits<int>::max();
+  adb::demo::addIntegerOption(app, "--steps", o.steps, 1, kMaxInt, "steps to run");
+  adb::demo::addIntegerOption(app, "--interval", o.interval, 1, kMaxInt,
+                              "steps per row of the table");
+  adb::demo::addIntegerOption(app, "--bodies", o.bodies, 1, 100000,
+                              "dynamic bodies alive at any time");
+  adb::demo::addIntegerOption(app, "--churn", o.churn, 0, 100000,
+                              "bodies added and as many removed every step (at most --bodies)");
+  adb::demo::addIntegerOption(app, "--seed", o.seed, 0, kNoLimit,
+                              "random seed (bodies, poses, removals)");
+  adb::demo::addIntegerOption(app, "--budget-pairs", o.budgetPairs, 0, kNoLimit,
+                              "node-pair budget per step (0: none)");
+  adb::demo::addValueOption(
+      app, "--budget-us", "US", "time budget per step in microseconds (0: none)",
+      [&o](const std::string& text) {
+        const double micros = adb::demo::parseNumber("--budget-us", text);
+        if (micros < 0) adb::demo::failValue("--budget-us", text, "must be >= 0");
+        o.budgetMicros = micros;
+      },
+      "0");
+}
 
 // Resident set size now, in MB (/proc/self/statm: pages).
 double residentMB() {
@@ -207,22 +237,16 @@ struct Row {
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{"", "adb-bench-soak"};
   Options o;
-  CLI::App app{"adb-bench-soak: RSS and time per step of a world whose bodies come and go"};
-  app.add_option("--steps", o.steps, "steps to run")->check(CLI::Range(1, 100000000));
-  app.add_option("--interval", o.interval, "steps per row of the table")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--bodies", o.bodies, "dynamic bodies alive at any time")
-      ->check(CLI::Range(1, 100000));
-  app.add_option("--churn", o.churn, "bodies added and as many removed every step")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--seed", o.seed, "random seed (bodies, poses, removals)");
-  app.add_option("--budget-pairs", o.budgetPairs, "node-pair budget per step (default none)");
-  app.add_option("--budget-us", o.budgetMicros, "time budget per step (default none)")
-      ->check(CLI::NonNegativeNumber);
-  CLI11_PARSE(app, argc, argv);
+  addOptions(app, o);
+  if (const std::optional<int> exitCode =
+          adb::demo::parseCommandLine(app, "adb-bench-soak", argc, argv)) {
+    return *exitCode;
+  }
   if (o.churn > o.bodies) {
-    std::fprintf(stderr, "--churn %d: at most --bodies (%d)\n", o.churn, o.bodies);
+    std::fprintf(stderr, "adb-bench-soak: error: --churn '%d': must be at most --bodies (%d)\n",
+                 o.churn, o.bodies);
     return 2;
   }
 
