@@ -4,7 +4,9 @@
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
 
+#include <cmath>
 #include <limits>
 
 #include "adb/bullet/dispatcher.h"
@@ -111,11 +113,29 @@ btPersistentManifold* ManifoldAlgorithm::manifoldFor(const btCollisionObjectWrap
   return m_manifold;
 }
 
+namespace {
+
+// Whether a rigid body's velocities are finite (any other object has none).
+bool finiteVelocities(const btCollisionObject* object) {
+  const btRigidBody* body = btRigidBody::upcast(object);
+  if (!body) return true;
+  const btVector3 v = body->getLinearVelocity(), w = body->getAngularVelocity();
+  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()) &&
+         std::isfinite(w.x()) && std::isfinite(w.y()) && std::isfinite(w.z());
+}
+
+}  // namespace
+
 bool ManifoldAlgorithm::acceptPoses(const btCollisionObjectWrapper* body0,
                                     const btCollisionObjectWrapper* body1) {
   bool usable = true;
   for (const btCollisionObjectWrapper* body : {body0, body1}) {
-    const PoseDefect defect = poseDefect(detail::toPose(body->getWorldTransform()));
+    PoseDefect defect = poseDefect(detail::toPose(body->getWorldTransform()));
+    // A NaN velocity makes a NaN pose only when the step integrates it, after the solver
+    // has carried it through this pair's contacts to the other body: refused the same way.
+    if (defect == PoseDefect::None && !finiteVelocities(body->getCollisionObject())) {
+      defect = PoseDefect::NonFinite;
+    }
     if (defect == PoseDefect::None) continue;
     usable = false;
     if (m_scheduler) m_scheduler->noteBadPose(body->getCollisionObject(), defect);

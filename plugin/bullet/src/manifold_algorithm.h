@@ -100,9 +100,10 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// the algorithm).
   void ensureManifold(const btCollisionObjectWrapper* body0,
                       const btCollisionObjectWrapper* body1);
-  /// Whether both bodies' poses are usable (adb/core/query.h, poseDefect). When one is not,
-  /// the pair's manifold is emptied (its points would carry the bad pose into the solver)
-  /// and the body is reported to the scheduler: the pair is skipped.
+  /// Whether both bodies' poses are usable (adb/core/query.h, poseDefect) and their
+  /// velocities finite. When one is not, the pair's manifold is emptied (its points would
+  /// carry the NaN into the solver) and the body is reported to the scheduler: the pair is
+  /// skipped.
   bool acceptPoses(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
   /// Keeps the mesh's pose in the other body's frame, and how far its points reach from
   /// its origin, for motionSinceLastRun.

@@ -50,10 +50,11 @@ class Dispatcher : public btCollisionDispatcher {
   void lastMeshPairs(std::vector<MeshPairReport>& out) const;
 
   /// Called once per step for each body whose pose adb cannot use (NaN, a rotation that is
-  /// not orthonormal, beyond 1e150), as soon as one of its adb pairs meets it. The body's
-  /// adb pairs are skipped and their manifolds emptied, so that the solver carries no NaN
-  /// to the bodies it touches; lastFrameStats() names the body too. The callback must not
-  /// throw: an exception from it is swallowed (none may leave Bullet's step).
+  /// not orthonormal beyond btScalar's rounding, beyond 1e150) or whose velocities are not
+  /// finite, as soon as one of its adb pairs meets it. The body's adb pairs are skipped and
+  /// their manifolds emptied, so that the solver carries no NaN to the bodies it touches;
+  /// lastFrameStats() names the body too. The callback must not throw: an exception from it
+  /// is swallowed (none may leave Bullet's step).
   void setBadPoseCallback(std::function<void(const BadPose&)> callback);
 
   void dispatchAllCollisionPairs(btOverlappingPairCache* pairCache,

@@ -66,6 +66,8 @@ struct BadPose {
   const btCollisionObject* body = nullptr;
   int bodyIndex = -1;           ///< btCollisionObject::getWorldArrayIndex()
   void* userPointer = nullptr;  ///< btCollisionObject::getUserPointer()
+  /// NonFinite also for a rigid body whose velocities are not finite (its pose would be
+  /// by the end of the step).
   PoseDefect defect = PoseDefect::None;
 };
 
