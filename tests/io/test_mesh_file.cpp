@@ -352,6 +352,58 @@ TEST_F(MeshFileTest, DeclaredCountsBeyondTheFileOrTheLimitsAreErrors) {
   expectError([&] { loadMesh(file, nullptr, corners); }, {file, "4 corners", "LoadLimits::maxFaceCorners"});
 }
 
+// What a damaged file puts into an error is quoted short and printable: assimp's number parser
+// quotes the rest of the file (15 MB for a mutated STL of 100,000 facets).
+std::string messageOf(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const MeshFileError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no MeshFileError";
+  return {};
+}
+
+bool printable(const std::string& text) {
+  return std::none_of(text.begin(), text.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) == 0x7F;
+  });
+}
+
+TEST_F(MeshFileTest, AnAssimpErrorQuotingTheRestOfTheFileIsCutShort) {
+  std::string stl = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex S\x01~ 1 0\n";
+  for (int i = 0; i < 20000; ++i) stl += "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n";
+  stl += "endsolid s\n";
+  const std::string file = write("bad_number.stl", stl);
+  const std::string what = messageOf([&] { loadMesh(file); });
+  EXPECT_LT(what.size(), file.size() + 400) << what.substr(0, 1000);  // the file is 1.4 MB
+  EXPECT_NE(what.find("more bytes)"), std::string::npos) << what;
+  EXPECT_NE(what.find(file), std::string::npos) << what;
+  EXPECT_TRUE(printable(what)) << what;
+}
+
+TEST_F(MeshFileTest, ALongOrBinaryWordInAPlyHeaderIsQuotedShortAndPrintable) {
+  const std::string word = "\x01\x02" + std::string(5000, 'w');
+  const std::string file = write("word.ply", "ply\nformat ascii 1.0\nelement " + word + " 3\nend_header\n");
+  const std::string what = messageOf([&] { loadMesh(file); });
+  EXPECT_LT(what.size(), file.size() + 200) << what;
+  EXPECT_NE(what.find("element '??wwww"), std::string::npos) << what;
+  EXPECT_NE(what.find("more bytes)"), std::string::npos) << what;
+  EXPECT_TRUE(printable(what)) << what;
+}
+
+TEST_F(MeshFileTest, AFloodOfAssimpWarningsIsCountedNotAllKept) {
+  // Every face names a material no file defines: assimp logs at least one line per face.
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (int i = 0; i < 500; ++i) obj += "usemtl m" + std::to_string(i) + "\nf 1 2 3\n";
+  const std::string file = write("materials.obj", obj);
+  LoadReport report;
+  EXPECT_EQ(loadMesh(file, &report).triangleCount(), 500u);
+  ASSERT_EQ(report.warnings.size(), 101u);
+  EXPECT_TRUE(anyContains({report.warnings.back()}, "more messages not kept")) << report.warnings.back();
+  EXPECT_TRUE(anyContains({report.warnings.front()}, "failed to locate material m0")) << report.warnings.front();
+}
+
 TEST_F(MeshFileTest, BinaryPlyBothByteOrdersAndOffVariantsLoad) {
   const float v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   const int q[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};

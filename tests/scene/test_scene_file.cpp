@@ -230,5 +230,34 @@ TEST(SceneFile, GarbageNeverCrashes) {
   }
 }
 
+// What a damaged file wrote is quoted short and printable: the file can hold megabytes where
+// a name or a number should be.
+TEST(SceneFile, HugeNamesAndTokensAreQuotedShortAndPrintable) {
+  const std::string huge(100000, 'k');
+  const auto expectShort = [](const SceneError& e, const std::string& part) {
+    const std::string what = e.what();
+    EXPECT_LT(what.size(), 400u) << what.substr(0, 1000);
+    EXPECT_LT(e.where().size(), 200u) << e.where().substr(0, 1000);
+    EXPECT_NE(what.find(part), std::string::npos) << what.substr(0, 1000);
+    for (const char c : what) EXPECT_GE(static_cast<unsigned char>(c), 0x20u) << what;
+  };
+  // A shape's name: in the JSON path of the error.
+  expectShort(errorOf(edited("\"ball\": {\"type\": \"sphere\"", "\"" + huge + "\": {\"type\": \"spere\"")),
+              "more bytes)");
+  // An unknown key, a string with a control character, a number too large to hold.
+  expectShort(errorOf(edited("\"friction\": 0.3", "\"" + huge + "\": 0.3")), "unknown key 'kkk");
+  const SceneError control = errorOf(edited("\"torus\"", "\"" + huge + "\x01\""));
+  expectShort(control, "control character");
+  EXPECT_EQ(control.where().rfind("line ", 0), 0u) << control.where();
+  expectShort(errorOf(edited("\"steps\": 50", "\"steps\": 1" + std::string(100000, '2'))), "overflow");
+  // The list of known shapes names ten, then says how many more.
+  std::string many = "\"shapes\": {";
+  for (int i = 0; i < 30; ++i) many += "\"s" + std::to_string(i) + "\": {\"type\": \"sphere\", \"radius\": 1}, ";
+  std::string text = edited("\"shapes\": {", many);
+  const std::string ref = "\"shape\": \"ball\"";
+  text.replace(text.find(ref), ref.size(), "\"shape\": \"bal\"");
+  expectShort(errorOf(text), "and 24 more)");
+}
+
 }  // namespace
 }  // namespace adb::scene

@@ -5,10 +5,15 @@
 #include <assimp/LogStream.hpp>
 #include <assimp/Logger.hpp>
 
+#include "adb/io/message_text.h"
+
+
 namespace adb::io::detail {
 namespace {
 
 constexpr unsigned kCapturedSeverities = Assimp::Logger::Warn | Assimp::Logger::Err;
+// A damaged file can make assimp warn once per face: keep the first lines and count the rest.
+constexpr std::size_t kMaxLines = 100;
 
 std::mutex& loggerMutex() {
   static std::mutex mutex;
@@ -24,10 +29,10 @@ std::string tidy(const char* raw) {
   const std::size_t comma = line.find(',');
   const std::size_t colon = line.find(": ");
   if (comma == std::string::npos || colon == std::string::npos || colon < comma) {
-    return "assimp: " + line;
+    return "assimp: " + excerpt(line);
   }
   const std::string severity = line.substr(0, comma);
-  const std::string message = line.substr(colon + 2);
+  const std::string message = excerpt(std::string_view(line).substr(colon + 2));
   if (severity == "Error") return "assimp error: " + message;
   if (severity == "Warn") return "assimp warning: " + message;
   return "assimp " + severity + ": " + message;
@@ -37,8 +42,15 @@ std::string tidy(const char* raw) {
 
 class AssimpLogCapture::Stream : public Assimp::LogStream {
  public:
-  void write(const char* message) override { lines.push_back(tidy(message)); }
+  void write(const char* message) override {
+    if (lines.size() < kMaxLines) {
+      lines.push_back(tidy(message));
+    } else {
+      ++dropped;
+    }
+  }
   std::vector<std::string> lines;
+  std::size_t dropped = 0;
 };
 
 AssimpLogCapture::AssimpLogCapture()
@@ -60,6 +72,10 @@ AssimpLogCapture::~AssimpLogCapture() {
 std::vector<std::string> AssimpLogCapture::take() {
   std::vector<std::string> lines;
   lines.swap(m_stream->lines);
+  if (m_stream->dropped > 0) {
+    lines.push_back("assimp: " + std::to_string(m_stream->dropped) + " more messages not kept");
+    m_stream->dropped = 0;
+  }
   return lines;
 }
 

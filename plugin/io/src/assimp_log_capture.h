@@ -30,7 +30,8 @@ class AssimpLogCapture {
   AssimpLogCapture& operator=(const AssimpLogCapture&) = delete;
 
   /// The warnings and errors logged so far, as "assimp error: <message>" / "assimp warning:
-  /// <message>", in order; the capture starts empty again.
+  /// <message>", in order; the capture starts empty again. At most 100 lines are kept (then
+  /// one saying how many more came), each cut to an excerpt (message_text.h).
   std::vector<std::string> take();
 
  private:

@@ -1,5 +1,6 @@
 // loadMesh: file checks, assimp's import (logs captured), flattening, the core's validation.
 #include "adb/io/mesh_file.h"
+#include "adb/io/message_text.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -73,7 +74,7 @@ std::unique_ptr<aiScene> importScene(Read read, const std::string& name, const L
   const aiScene* scene = read(importer);
   logged();
   if (scene == nullptr) {
-    throw MeshFileError(name + ": assimp cannot read it: " + importer.GetErrorString());
+    throw MeshFileError(name + ": assimp cannot read it: " + excerpt(importer.GetErrorString()));
   }
   // assimp's validation would call this "invalid": to a user it is a file with no triangles.
   if (scene->mNumMeshes == 0) throw MeshFileError(name + ": no triangles (no mesh in the file)");
@@ -82,7 +83,7 @@ std::unique_ptr<aiScene> importScene(Read read, const std::string& name, const L
     scene = importer.ApplyPostProcessing(step);
     logged();
     if (scene == nullptr) {
-      throw MeshFileError(name + ": not a valid mesh: " + importer.GetErrorString());
+      throw MeshFileError(name + ": not a valid mesh: " + excerpt(importer.GetErrorString()));
     }
   }
   return std::unique_ptr<aiScene>(importer.GetOrphanedScene());  // processed outside the lock

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include "adb/io/message_text.h"
+
 namespace adb::io::detail {
 namespace {
 
@@ -110,14 +112,14 @@ Header readHeader(const char* data, std::size_t size, const std::string& name) {
       if (kind == "ascii") h.format = Format::Ascii;
       else if (kind == "binary_little_endian") h.format = Format::LittleEndian;
       else if (kind == "binary_big_endian") h.format = Format::BigEndian;
-      else fail(name, where + "unknown format '" + kind + "'");
+      else fail(name, where + "unknown format " + quoted(kind));
       format = true;
     } else if (key == "element") {
       Element e;
       std::string count;
       words >> e.name >> count;
       std::uint64_t n = 0;
-      if (!parseIndex(count, n)) fail(name, where + "element '" + e.name + "' has no valid count");
+      if (!parseIndex(count, n)) fail(name, where + "element " + quoted(e.name) + " has no valid count");
       e.count = n;
       h.elements.push_back(e);
     } else if (key == "property") {
@@ -130,15 +132,15 @@ Header readHeader(const char* data, std::size_t size, const std::string& name) {
         words >> countType >> itemType;
         p.list = true;
         if (!typeOf(countType, p.countType) || !isInteger(p.countType) || !typeOf(itemType, p.type)) {
-          fail(name, where + "bad list types '" + countType + "', '" + itemType + "'");
+          fail(name, where + "bad list types " + quoted(countType) + ", " + quoted(itemType));
         }
       } else if (!typeOf(type, p.type)) {
-        fail(name, where + "unknown property type '" + type + "'");
+        fail(name, where + "unknown property type " + quoted(type));
       }
       words >> p.name;
       h.elements.back().properties.push_back(p);
     } else if (key != "comment" && key != "obj_info" && !key.empty()) {
-      fail(name, where + "unknown keyword '" + key + "'");
+      fail(name, where + "unknown keyword " + quoted(key));
     }
   }
   if (!format) fail(name, "PLY header has no format line");
@@ -226,7 +228,7 @@ Roles rolesOf(const Element& e) {
 void checkCounts(const Header& h, std::size_t size, const std::string& name, const LoadLimits& limits) {
   std::uint64_t available = size - h.bytes;
   for (const Element& e : h.elements) {
-    const std::string what = "PLY element '" + e.name + "' declares " + std::to_string(e.count);
+    const std::string what = "PLY element " + quoted(e.name) + " declares " + std::to_string(e.count);
     if (e.name == "vertex" && e.count > limits.maxVertices) {
       fail(name, what + ", more than the limit of " + std::to_string(limits.maxVertices) +
                      " (LoadLimits::maxVertices)");
@@ -266,33 +268,34 @@ PolygonMesh readPly(const char* data, std::size_t size, const std::string& name,
     if (vertex) out.vertices.reserve(static_cast<std::size_t>(e.count));  // checked against the size
     if (face) out.faceSizes.reserve(static_cast<std::size_t>(e.count));
     for (std::uint64_t i = 0; i < e.count; ++i) {
-      const std::string where = "PLY element '" + e.name + "' " + std::to_string(i);
+      // Built only for an error: a string per row would cost more than reading the row.
+      const auto where = [&] { return "PLY element " + quoted(e.name) + " " + std::to_string(i); };
       Vec3 position = Vec3::Zero();
       for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
         const Property& p = e.properties[static_cast<std::size_t>(k)];
         double v = 0;
         if (!p.list) {
-          if (!values.read(p.type, v)) fail(name, where + ": property '" + p.name + "' is missing or not a number");
+          if (!values.read(p.type, v)) fail(name, where() + ": property " + quoted(p.name) + " is missing or not a number");
           if (vertex && k == roles.x) position.x() = v;
           if (vertex && k == roles.y) position.y() = v;
           if (vertex && k == roles.z) position.z() = v;
           continue;
         }
         if (!values.read(p.countType, v) || !isCount(v, 4294967295.0)) {
-          fail(name, where + ": list '" + p.name + "' has no valid count");
+          fail(name, where() + ": list " + quoted(p.name) + " has no valid count");
         }
         const auto n = static_cast<std::uint64_t>(v);
         const bool indices = face && k == roles.indices;
         if (indices && n > limits.maxFaceCorners) {
-          fail(name, where + " has " + std::to_string(n) + " corners, more than " +
+          fail(name, where() + " has " + std::to_string(n) + " corners, more than " +
                          std::to_string(limits.maxFaceCorners) + " (LoadLimits::maxFaceCorners)");
         }
-        if (n > values.left()) fail(name, where + ": list '" + p.name + "' runs past the end of the file");
+        if (n > values.left()) fail(name, where() + ": list " + quoted(p.name) + " runs past the end of the file");
         for (std::uint64_t j = 0; j < n; ++j) {
-          if (!values.read(p.type, v)) fail(name, where + ": list '" + p.name + "' is cut short");
+          if (!values.read(p.type, v)) fail(name, where() + ": list " + quoted(p.name) + " is cut short");
           if (!indices) continue;
           if (!isCount(v, 4294967294.0)) {
-            fail(name, where + ": vertex index " + std::to_string(v) + " is not an index");
+            fail(name, where() + ": vertex index " + std::to_string(v) + " is not an index");
           }
           out.corners.push_back(static_cast<std::uint32_t>(v));
         }

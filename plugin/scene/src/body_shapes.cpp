@@ -6,6 +6,7 @@
 
 #include "adb/support/mesh_generators.h"
 #include "adb/io/mesh_file.h"
+#include "adb/io/message_text.h"
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_models.h"
 #include "bullet_conversions.h"
@@ -82,7 +83,7 @@ const TriangleMesh& BodyShapes::sourceMesh(std::size_t shape) {
     if (s.kind == ShapeSpec::Kind::Mesh && s.recentre) mesh = recentred(mesh);
     return m_sources.emplace(shape, std::move(mesh)).first->second;
   } catch (const std::exception& e) {
-    throw SceneError(file, "shapes." + s.name + (s.kind == ShapeSpec::Kind::Mesh ? ".file" : ""),
+    throw SceneError(file, "shapes." + io::excerpt(s.name, 60) + (s.kind == ShapeSpec::Kind::Mesh ? ".file" : ""),
                      e.what());
   }
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "adb/io/message_text.h"
 #include "adb/scene/scene_models.h"
 
 namespace adb::scene {
@@ -37,11 +38,19 @@ const char* typeName(const Json& j) {
   }
 }
 
-std::string inQuotes(const std::string& s) { return "'" + s + "'"; }
+// What the file wrote, quoted short and printable (adb/io/message_text.h): a damaged or hostile
+// file can hold a name of megabytes.
+std::string inQuotes(const std::string& s) { return io::quoted(s); }
+std::string keyText(const std::string& key) { return io::excerpt(key, 60); }
 
+// The first ten names, then how many more.
 std::string joined(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 10;
   std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  for (std::size_t i = 0; i < names.size() && i < kShown; ++i) {
+    out += (out.empty() ? "" : ", ") + keyText(names[i]);
+  }
+  if (names.size() > kShown) out += " and " + std::to_string(names.size() - kShown) + " more";
   return out;
 }
 
@@ -58,7 +67,7 @@ class Object {
     throw SceneError(m_file, where, what);
   }
   std::string at(const std::string& key) const {
-    return m_path.empty() ? key : m_path + "." + key;
+    return m_path.empty() ? keyText(key) : m_path + "." + keyText(key);
   }
   bool has(const std::string& key) const { return m_json.contains(key); }
 
@@ -234,7 +243,7 @@ ViewSpec readView(const Json& j, const std::string& file) {
 
 ShapeSpec readShape(const std::string& name, const Json& j, const std::string& file,
                     const std::filesystem::path& folder) {
-  Object o(j, "shapes." + name, file);
+  Object o(j, "shapes." + keyText(name), file);
   ShapeSpec s;
   s.name = name;
   const std::string kind = o.string("type");
@@ -434,6 +443,26 @@ std::string lineAndColumn(const std::string& text, std::size_t byte) {
   return "line " + std::to_string(line) + ", column " + std::to_string(column);
 }
 
+// nlohmann's message, "[json.exception.parse_error.101] parse error at line 1, column 9:
+// syntax error while parsing value - invalid literal; last read: '<token>'", without its own
+// position and with only the end of the token, where the parser stopped.
+std::string syntaxError(const std::string& message) {
+  std::string what = message;
+  const std::size_t column = what.find(", column ");
+  const std::size_t colon = what.find(": ", column == std::string::npos ? 0 : column);
+  if (colon != std::string::npos) what = what.substr(colon + 2);
+  const std::string syntax = "syntax error ";
+  if (what.compare(0, syntax.size(), syntax) == 0) what = what.substr(syntax.size());
+  const std::string lastRead = "; last read: '";
+  const std::size_t read = what.find(lastRead);
+  if (read == std::string::npos) return io::excerpt(what);
+  std::string token = what.substr(read + lastRead.size());
+  if (!token.empty() && token.back() == '\'') token.pop_back();
+  constexpr std::size_t kTail = 40;
+  const std::string tail = token.size() > kTail ? "..." + token.substr(token.size() - kTail) : token;
+  return io::excerpt(what.substr(0, read)) + "; last read: '" + io::excerpt(tail) + "'";
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& name,
@@ -442,17 +471,13 @@ Scene parseScene(const std::string& text, const std::string& name,
   try {
     json = Json::parse(text);
   } catch (const Json::parse_error& e) {
-    // nlohmann's message names its own position: keep only what went wrong.
-    std::string what = e.what();
-    const std::size_t colon = what.rfind(": ");
-    if (colon != std::string::npos) what = what.substr(colon + 2);
-    throw SceneError(name, lineAndColumn(text, e.byte), "syntax error: " + what);
+    throw SceneError(name, lineAndColumn(text, e.byte), "syntax error: " + syntaxError(e.what()));
   } catch (const Json::exception& e) {
     // A number too large for a double (1e999): no position from the parser.
     std::string what = e.what();
     const std::size_t bracket = what.find("] ");
     if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    throw SceneError(name, "", what);
+    throw SceneError(name, "", io::excerpt(what));
   }
   Object top(json, "", name);
   Scene scene;
