@@ -436,6 +436,13 @@ TEST_F(MeshFileTest, BinaryPlyBothByteOrdersAndOffVariantsLoad) {
   EXPECT_EQ(loadMesh(noff).triangleCount(), 4u);
   const std::string fourD = write("four.off", "4OFF\n1 0 0\n0 0 0 0\n");
   expectError([&] { loadMesh(fourD); }, {fourD, "4D OFF"});
+  // nOFF gives its dimension first: 3 is a mesh, 2 is not. Binary OFF is named, not misread.
+  const std::string n3 = write("n3.off", "nOFF\n3\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(loadMesh(n3).triangleCount(), 1u);
+  const std::string n2 = write("n2.off", "nOFF\n2\n3 1 0\n0 0\n1 0\n0 1\n3 0 1 2\n");
+  expectError([&] { loadMesh(n2); }, {n2, "nOFF of dimension '2' is not a 3D mesh"});
+  const std::string binary = write("binary.off", std::string("OFF BINARY\n\0\0\0\3\0\0\0\1", 19));
+  expectError([&] { loadMesh(binary); }, {binary, "binary OFF is not read"});
 }
 
 TEST_F(MeshFileTest, FromMemoryEveryFormatTheFilesTake) {

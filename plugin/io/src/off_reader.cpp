@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "adb/io/message_text.h"
+
 namespace adb::io::detail {
 namespace {
 
@@ -22,6 +24,7 @@ std::uint64_t count(TextTokens& tokens, const std::string& name, const char* wha
   std::string token;
   std::uint64_t n = 0;
   if (!tokens.next(token) || !parseIndex(token, n)) {
+    if (token == "BINARY") fail(name, "binary OFF is not read (ASCII OFF is)");
     fail(name, std::string("OFF header: no ") + what + " count");
   }
   return n;
@@ -42,7 +45,14 @@ PolygonMesh readOff(const char* data, std::size_t size, const std::string& name,
   if (keyword.find('4') != std::string::npos) fail(name, "4D OFF is not a 3D mesh");
   TextTokens tokens(data, size, keyword.size(), true);
   std::string token;
-  // "OFF BINARY" would say so where the counts are.
+  // nOFF (a lower-case n; NOFF has normals): the dimension comes before the counts.
+  if (keyword.size() >= 4 && std::string(data + keyword.size() - 4, 4) == "nOFF") {
+    std::uint64_t dimension = 0;
+    if (!tokens.next(token) || !parseIndex(token, dimension) || dimension != 3) {
+      fail(name, "nOFF of dimension " + quoted(token) + " is not a 3D mesh");
+    }
+  }
+  // "OFF BINARY" says so where the counts are (count() names it).
   const std::uint64_t vertices = count(tokens, name, "vertex");
   const std::uint64_t faces = count(tokens, name, "face");
   count(tokens, name, "edge");
