@@ -7,7 +7,6 @@
 
 #include "adb/io/message_text.h"
 
-
 namespace adb::io::detail {
 namespace {
 

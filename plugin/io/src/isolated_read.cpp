@@ -98,7 +98,9 @@ class Reader {
   }
   // The child is disposable: its crash is the parent's answer, not the application's, so the
   // application's crash handlers (a crash reporter, a fuzzer's) must not run for it.
-  for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS}) ::signal(sig, SIG_DFL);
+  for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS}) {
+    ::signal(sig, SIG_DFL);
+  }
   if (!kSanitized && limits.maxReadBytes > 0) {
     const rlimit memory{static_cast<rlim_t>(limits.maxReadBytes), static_cast<rlim_t>(limits.maxReadBytes)};
     setrlimit(RLIMIT_AS, &memory);

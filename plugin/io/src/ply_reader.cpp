@@ -119,7 +119,9 @@ Header readHeader(const char* data, std::size_t size, const std::string& name) {
       std::string count;
       words >> e.name >> count;
       std::uint64_t n = 0;
-      if (!parseIndex(count, n)) fail(name, where + "element " + quoted(e.name) + " has no valid count");
+      if (!parseIndex(count, n)) {
+        fail(name, where + "element " + quoted(e.name) + " has no valid count");
+      }
       e.count = n;
       h.elements.push_back(e);
     } else if (key == "property") {
@@ -228,7 +230,8 @@ Roles rolesOf(const Element& e) {
 void checkCounts(const Header& h, std::size_t size, const std::string& name, const LoadLimits& limits) {
   std::uint64_t available = size - h.bytes;
   for (const Element& e : h.elements) {
-    const std::string what = "PLY element " + quoted(e.name) + " declares " + std::to_string(e.count);
+    const std::string what =
+        "PLY element " + quoted(e.name) + " declares " + std::to_string(e.count);
     if (e.name == "vertex" && e.count > limits.maxVertices) {
       fail(name, what + ", more than the limit of " + std::to_string(limits.maxVertices) +
                      " (LoadLimits::maxVertices)");
@@ -275,7 +278,9 @@ PolygonMesh readPly(const char* data, std::size_t size, const std::string& name,
         const Property& p = e.properties[static_cast<std::size_t>(k)];
         double v = 0;
         if (!p.list) {
-          if (!values.read(p.type, v)) fail(name, where() + ": property " + quoted(p.name) + " is missing or not a number");
+          if (!values.read(p.type, v)) {
+            fail(name, where() + ": property " + quoted(p.name) + " is missing or not a number");
+          }
           if (vertex && k == roles.x) position.x() = v;
           if (vertex && k == roles.y) position.y() = v;
           if (vertex && k == roles.z) position.z() = v;
@@ -290,9 +295,13 @@ PolygonMesh readPly(const char* data, std::size_t size, const std::string& name,
           fail(name, where() + " has " + std::to_string(n) + " corners, more than " +
                          std::to_string(limits.maxFaceCorners) + " (LoadLimits::maxFaceCorners)");
         }
-        if (n > values.left()) fail(name, where() + ": list " + quoted(p.name) + " runs past the end of the file");
+        if (n > values.left()) {
+          fail(name, where() + ": list " + quoted(p.name) + " runs past the end of the file");
+        }
         for (std::uint64_t j = 0; j < n; ++j) {
-          if (!values.read(p.type, v)) fail(name, where() + ": list " + quoted(p.name) + " is cut short");
+          if (!values.read(p.type, v)) {
+            fail(name, where() + ": list " + quoted(p.name) + " is cut short");
+          }
           if (!indices) continue;
           if (!isCount(v, 4294967294.0)) {
             fail(name, where() + ": vertex index " + std::to_string(v) + " is not an index");

@@ -83,8 +83,8 @@ const TriangleMesh& BodyShapes::sourceMesh(std::size_t shape) {
     if (s.kind == ShapeSpec::Kind::Mesh && s.recentre) mesh = recentred(mesh);
     return m_sources.emplace(shape, std::move(mesh)).first->second;
   } catch (const std::exception& e) {
-    throw SceneError(file, "shapes." + io::excerpt(s.name, 60) + (s.kind == ShapeSpec::Kind::Mesh ? ".file" : ""),
-                     e.what());
+    const std::string where = "shapes." + io::excerpt(s.name, 60);
+    throw SceneError(file, where + (s.kind == ShapeSpec::Kind::Mesh ? ".file" : ""), e.what());
   }
 }
 
