@@ -307,6 +307,18 @@ TEST_F(MeshFileTest, LinesBesideTrianglesAreSkippedWithAWarning) {
   EXPECT_TRUE(anyContains(report.warnings, "0 point and 1 line primitives"));
 }
 
+// A face of two corners ("f 1 2") is a line too. assimp's OBJ reader files it under polygons,
+// and its validation refused the whole file ("is a LINE but mPrimitiveTypes does not report
+// the LINE flag").
+TEST_F(MeshFileTest, ATwoCornerFaceIsSkippedAsALineNotTheWholeFile) {
+  const std::string file = write("two.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3\nf 1 3 4\n");
+  LoadReport report;
+  const adb::TriangleMesh mesh = loadMesh(file, &report);
+  EXPECT_EQ(mesh.triangleCount(), 2u);
+  EXPECT_NEAR(totalArea(mesh), 1.0, kTol);
+  EXPECT_TRUE(anyContains(report.warnings, "0 point and 1 line primitives")) << ::testing::PrintToString(report.warnings);
+}
+
 TEST_F(MeshFileTest, NanCoordinateInObjIsAnErrorNamingTheVertex) {
   // assimp parses "nan" as a NaN and passes it through (no post-processing step that would
   // drop the vertex or merge others into it is used).

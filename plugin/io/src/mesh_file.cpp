@@ -78,7 +78,9 @@ std::unique_ptr<aiScene> importScene(Read read, const std::string& name, const L
   }
   // assimp's validation would call this "invalid": to a user it is a file with no triangles.
   if (scene->mNumMeshes == 0) throw MeshFileError(name + ": no triangles (no mesh in the file)");
-  detail::checkBeforeTriangulation(*scene, name, limits);
+  // The importer hands out its scene as const; before its post-processing it is ours to mend
+  // as assimp's own steps do (scene_checks.h: only primitive-type flags).
+  detail::checkBeforeTriangulation(const_cast<aiScene&>(*scene), name, limits);
   for (const unsigned step : {unsigned(aiProcess_ValidateDataStructure), unsigned(aiProcess_Triangulate)}) {
     scene = importer.ApplyPostProcessing(step);
     logged();

@@ -26,7 +26,17 @@ void checkNode(const aiScene& scene, const aiNode* node, const std::string& file
   for (unsigned i = 0; i < node->mNumChildren; ++i) checkNode(scene, node->mChildren[i], file, depth + 1);
 }
 
-void checkMesh(const aiMesh& mesh, unsigned m, const std::string& file, const LoadLimits& limits,
+// The primitive-type flag of a face with `corners` corners (assimp's own classification).
+unsigned primitiveType(unsigned corners) {
+  switch (corners) {
+    case 1: return aiPrimitiveType_POINT;
+    case 2: return aiPrimitiveType_LINE;
+    case 3: return aiPrimitiveType_TRIANGLE;
+    default: return aiPrimitiveType_POLYGON;
+  }
+}
+
+void checkMesh(aiMesh& mesh, unsigned m, const std::string& file, const LoadLimits& limits,
                std::uint64_t& vertices, std::uint64_t& faces) {
   const std::string label = "mesh " + std::to_string(m);
   vertices += mesh.mNumVertices;
@@ -40,27 +50,30 @@ void checkMesh(const aiMesh& mesh, unsigned m, const std::string& file, const Lo
   }
   if (mesh.mNumVertices > 0 && mesh.mVertices == nullptr) fail(file, label + " has no positions");
   if (mesh.mNumFaces > 0 && mesh.mFaces == nullptr) fail(file, label + " has no faces array");
+  unsigned types = 0;
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];
-    const std::string where = label + ", face " + std::to_string(f);
-    if (face.mNumIndices == 0 || face.mIndices == nullptr) fail(file, where + " has no vertices");
+    // Built only for an error: a string per face would cost more than the check.
+    const auto where = [&] { return label + ", face " + std::to_string(f); };
+    if (face.mNumIndices == 0 || face.mIndices == nullptr) fail(file, where() + " has no vertices");
     if (face.mNumIndices > limits.maxFaceCorners) {
-      fail(file, where + " has " + std::to_string(face.mNumIndices) + " corners, more than " +
+      fail(file, where() + " has " + std::to_string(face.mNumIndices) + " corners, more than " +
                      std::to_string(limits.maxFaceCorners) + " (LoadLimits::maxFaceCorners)");
     }
     for (unsigned k = 0; k < face.mNumIndices; ++k) {
       if (face.mIndices[k] >= mesh.mNumVertices) {
-        fail(file, where + " references vertex " + std::to_string(face.mIndices[k]) +
+        fail(file, where() + " references vertex " + std::to_string(face.mIndices[k]) +
                        ", but the mesh has " + std::to_string(mesh.mNumVertices) + " vertices");
       }
     }
+    types |= primitiveType(face.mNumIndices);
   }
+  mesh.mPrimitiveTypes |= types;
 }
 
 }  // namespace
 
-void checkBeforeTriangulation(const aiScene& scene, const std::string& file,
-                              const LoadLimits& limits) {
+void checkBeforeTriangulation(aiScene& scene, const std::string& file, const LoadLimits& limits) {
   if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) fail(file, "the mesh list is missing");
   std::uint64_t vertices = 0, faces = 0;
   for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
