@@ -3,6 +3,7 @@
 #include "adb/io/message_text.h"
 
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cstdint>
 #include <iterator>
 #include <cstring>
 #include <filesystem>
@@ -23,6 +25,7 @@
 #include "off_reader.h"
 #include "ply_reader.h"
 #include "polygon_mesh.h"
+#include "reader_choice.h"
 #include "scene_checks.h"
 #include "scene_flatten.h"
 
@@ -184,8 +187,11 @@ adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report, const Lo
     return readOwnFormat(own, bytes.data(), bytes.size(), path, report, limits);
   }
   return assimpMesh(
-      [&](Assimp::Importer& importer) { return importer.ReadFile(path, kReadAsIs); }, path,
-      report, limits);
+      [&](Assimp::Importer& importer) {
+        detail::requireReaderForExtension(importer, path, *importer.GetIOHandler(), path);
+        return importer.ReadFile(path, kReadAsIs);
+      },
+      path, report, limits);
 }
 
 adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
@@ -203,6 +209,10 @@ adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
   if (own != OwnFormat::None) return readOwnFormat(own, bytes, size, name, report, limits);
   return assimpMesh(
       [&](Assimp::Importer& importer) {
+        // The name and I/O system that ReadFileFromMemory gives assimp's readers.
+        Assimp::MemoryIOSystem io(static_cast<const std::uint8_t*>(data), size, importer.GetIOHandler());
+        detail::requireReaderForExtension(
+            importer, std::string(AI_MEMORYIO_MAGIC_FILENAME) + "." + formatHint, io, name);
         return importer.ReadFileFromMemory(data, size, kReadAsIs, formatHint.c_str());
       },
       name, report, limits);

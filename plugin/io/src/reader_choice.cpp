@@ -1,0 +1,58 @@
+// requireReaderForExtension: see reader_choice.h.
+#include "reader_choice.h"
+
+#include <assimp/BaseImporter.h>
+#include <assimp/Importer.hpp>
+
+#include <cctype>
+#include <set>
+#include <vector>
+
+#include "adb/io/mesh_file.h"
+
+namespace adb::io::detail {
+namespace {
+
+bool endsWithNoCase(const std::string& text, const std::string& end) {
+  if (end.size() > text.size()) return false;
+  for (std::size_t i = 0; i < end.size(); ++i) {
+    const auto a = static_cast<unsigned char>(text[text.size() - end.size() + i]);
+    const auto b = static_cast<unsigned char>(end[i]);
+    if (std::tolower(a) != std::tolower(b)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void requireReaderForExtension(const Assimp::Importer& importer, const std::string& assimpPath,
+                               Assimp::IOSystem& io, const std::string& name) {
+  // The readers that claim the path's ending, as assimp's Importer::ReadFile gathers them
+  // (the whole ending is compared: some extensions hold a dot).
+  std::vector<Assimp::BaseImporter*> claimants;
+  std::string extension;
+  for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    Assimp::BaseImporter* reader = importer.GetImporter(i);
+    std::set<std::string> extensions;
+    reader->GetExtensionList(extensions);
+    for (const std::string& e : extensions) {
+      if (endsWithNoCase(assimpPath, "." + e)) {
+        claimants.push_back(reader);
+        extension = e;
+        break;
+      }
+    }
+  }
+  if (claimants.size() < 2) return;
+  std::string names;
+  for (Assimp::BaseImporter* reader : claimants) {
+    // What assimp itself asks next; the data is read in the same (isolated) process.
+    if (reader->CanRead(assimpPath, &io, true)) return;
+    const aiImporterDesc* info = reader->GetInfo();
+    names += (names.empty() ? "" : ", ") + std::string(info != nullptr ? info->mName : "?");
+  }
+  throw MeshFileError(name + ": not a ." + extension + " file: none of assimp's readers for it (" +
+                      names + ") recognises the data");
+}
+
+}  // namespace adb::io::detail
