@@ -21,6 +21,7 @@
 #include <system_error>
 
 #include "assimp_log_capture.h"
+#include "glb_header.h"
 #include "isolated_read.h"
 #include "off_reader.h"
 #include "ply_reader.h"
@@ -153,6 +154,12 @@ adb::TriangleMesh readOwnFormat(OwnFormat format, const char* data, std::size_t 
   return detail::meshFromPolygons(std::move(polygons), name, report);
 }
 
+// Data that may reach assimp's glTF readers: under their extensions, or under one no reader
+// claims (assimp then asks every reader, glTF's among them).
+bool mayBeGlb(const std::string& extension) {
+  return extension == "gltf" || extension == "glb" || !assimpExtension(extension);
+}
+
 std::string lowerExtension(const std::string& path) {
   std::string e = fs::path(path).extension().string();
   if (!e.empty()) e.erase(0, 1);
@@ -186,6 +193,17 @@ adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report, const Lo
     const std::string bytes = contents(path);
     return readOwnFormat(own, bytes.data(), bytes.size(), path, report, limits);
   }
+  if (mayBeGlb(lowerExtension(path))) {
+    std::ifstream in(path, std::ios::binary);
+    const detail::ReadAt readAt = [&](std::uint64_t offset, void* out, std::size_t bytes) {
+      in.clear();
+      in.seekg(static_cast<std::streamoff>(offset));
+      in.read(static_cast<char*>(out), static_cast<std::streamsize>(bytes));
+      return in.gcount() == static_cast<std::streamsize>(bytes);
+    };
+    std::error_code ec;
+    detail::checkGlbLengths(readAt, fs::file_size(path, ec), path);
+  }
   return assimpMesh(
       [&](Assimp::Importer& importer) {
         detail::requireReaderForExtension(importer, path, *importer.GetIOHandler(), path);
@@ -207,6 +225,14 @@ adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
   const char* bytes = static_cast<const char*>(data);
   const OwnFormat own = ownFormat(bytes, size, hint);
   if (own != OwnFormat::None) return readOwnFormat(own, bytes, size, name, report, limits);
+  if (mayBeGlb(hint)) {
+    const detail::ReadAt readAt = [&](std::uint64_t offset, void* out, std::size_t count) {
+      if (offset > size || count > size - offset) return false;
+      std::memcpy(out, bytes + offset, count);
+      return true;
+    };
+    detail::checkGlbLengths(readAt, size, name);
+  }
   return assimpMesh(
       [&](Assimp::Importer& importer) {
         // The name and I/O system that ReadFileFromMemory gives assimp's readers.
