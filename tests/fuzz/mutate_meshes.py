@@ -2,17 +2,18 @@
 """Mutated copies of real meshes, loaded as an application loads them.
 
 The check issue 13's reporter ran: each OBJ given is written out as OBJ, OFF, PLY (ASCII and
-binary) and STL (ASCII and binary), and each of those is damaged PER times the way files
-arrive from the internet: numbers replaced (NaN, infinities, overflows, negative and huge
-indices, empty), header counts changed, lines cut, doubled or dropped, bytes flipped, garbage
-inserted, binary counts, indices and floats overwritten. build/bin/adb-load-check loads every
+binary), STL (ASCII and binary), glTF (buffer embedded as base64) and GLB, and each of those
+is damaged PER times the way files arrive from the internet: numbers replaced (NaN,
+infinities, overflows, negative and huge indices, empty), header counts changed, lines cut,
+doubled or dropped, bytes flipped, garbage inserted, binary counts, lengths, indices and
+floats overwritten. build/bin/adb-load-check loads every
 file (default LoadLimits, isolated reader). Every file must load as a valid mesh or get a
 MeshFileError of at most 1,000 bytes, within TIMEOUT seconds; a crash, a hang, a longer
 message or anything else is a finding.
 
   tests/fuzz/mutate_meshes.py [--per 60] [--seed 1] [--out build/mutated] MESH.obj...
 """
-import argparse, os, random, re, struct, subprocess, sys, time
+import argparse, base64, json, os, random, re, struct, subprocess, sys, time
 
 NUMBERS = ['nan', 'inf', '-inf', '1e309', '-1e309', '4294967295', '4294967296', '-2147483649',
            '99999999999999999999', '-1', '0', '', '1e-320', '0x10', '+', '-', '1.2.3',
@@ -60,12 +61,42 @@ def formats(path):
                 rows(lambda v: '   vertex %r %r %r\n' % v, corners) + '  endloop\n endfacet\n')
     stl_binary = b'\0' * 80 + struct.pack('<I', len(T)) + b''.join(
         struct.pack('<12fH', *normal(*[V[i] for i in t]), *V[t[0]], *V[t[1]], *V[t[2]], 0) for t in T)
+    gltf, glb = gltf_files(V, T)
     return {'obj': ('obj', open(path, 'rb').read()),
             'off': ('off', ('OFF\n%d %d 0\n' % (len(V), len(F)) + points + polygons).encode()),
             'ply': ('ply', (header + points + polygons).encode()),
             'bply': ('ply', binary),
             'stl': ('stl', (stl + 'endsolid m\n').encode()),
-            'bstl': ('stl', stl_binary)}
+            'bstl': ('stl', stl_binary),
+            'gltf': ('gltf', gltf),
+            'glb': ('glb', glb)}
+
+
+def gltf_files(V, T):
+    """The triangles as glTF 2.0: one mesh, float positions and uint32 indices in one buffer,
+    embedded as base64 (.gltf) or as the BIN chunk (.glb)."""
+    positions = b''.join(struct.pack('<3f', *v) for v in V)
+    indices = b''.join(struct.pack('<3I', *t) for t in T)
+    blob = positions + indices
+    doc = {'asset': {'version': '2.0'}, 'scene': 0, 'scenes': [{'nodes': [0]}],
+           'nodes': [{'mesh': 0}],
+           'meshes': [{'primitives': [{'attributes': {'POSITION': 0}, 'indices': 1, 'mode': 4}]}],
+           'buffers': [{'byteLength': len(blob)}],
+           'bufferViews': [{'buffer': 0, 'byteOffset': 0, 'byteLength': len(positions), 'target': 34962},
+                           {'buffer': 0, 'byteOffset': len(positions), 'byteLength': len(indices),
+                            'target': 34963}],
+           'accessors': [{'bufferView': 0, 'componentType': 5126, 'count': len(V), 'type': 'VEC3',
+                          'min': [min(v[i] for v in V) for i in range(3)],
+                          'max': [max(v[i] for v in V) for i in range(3)]},
+                         {'bufferView': 1, 'componentType': 5125, 'count': 3 * len(T), 'type': 'SCALAR'}]}
+    text = dict(doc, buffers=[{'byteLength': len(blob),
+                               'uri': 'data:application/octet-stream;base64,' + base64.b64encode(blob).decode()}])
+    chunk = json.dumps(doc).encode()
+    chunk += b' ' * (-len(chunk) % 4)
+    blob += b'\0' * (-len(blob) % 4)
+    glb = (struct.pack('<4sII', b'glTF', 2, 12 + 8 + len(chunk) + 8 + len(blob)) +
+           struct.pack('<I4s', len(chunk), b'JSON') + chunk + struct.pack('<I4s', len(blob), b'BIN\0') + blob)
+    return json.dumps(text, indent=1).encode(), glb
 
 
 def mutate_text(rng, data):
@@ -93,6 +124,40 @@ def mutate_text(rng, data):
     for _ in range(rng.randrange(1, 20)):
         flipped[rng.randrange(len(flipped)) if rng.random() < 0.5 else rng.randrange(min(len(flipped), 300))] = rng.randrange(256)
     return 'bytes', bytes(flipped)
+
+
+def mutate_glb(rng, data):
+    """Header and chunk lengths, the JSON chunk as text, the BIN chunk's indices and floats."""
+    out = bytearray(data)
+    json_length = struct.unpack_from('<I', data, 12)[0]
+    body = 20 + json_length + 8
+    kind = rng.choice(['length', 'json', 'json', 'index', 'float', 'bytes', 'cut'])
+    if kind == 'cut':
+        return kind, data[:rng.randrange(len(data))]
+    if kind == 'json':
+        return kind, data[:20] + mutate_text(rng, data[20:20 + json_length])[1] + data[20 + json_length:]
+    if kind == 'length':
+        struct.pack_into('<I', out, rng.choice([4, 8, 12, 20 + json_length]),
+                         rng.choice([0, 1, 2**31, 2**32 - 1, len(data), len(data) + 4, rng.randrange(2**32)]))
+        return kind, bytes(out)
+    if kind in ('index', 'float') and body + 4 < len(out):
+        i = rng.randrange(body, len(out) - 4)
+        if kind == 'index':
+            struct.pack_into('<I', out, i, rng.choice([2**32 - 1, 2**31, 10**6, 0]))
+        else:
+            struct.pack_into('<f', out, i, rng.choice([float('nan'), float('inf'), -float('inf'), 3e38]))
+        return kind, bytes(out)
+    for _ in range(rng.randrange(1, 20)):
+        out[rng.randrange(len(out))] = rng.randrange(256)
+    return 'bytes', bytes(out)
+
+
+def mutate(rng, fmt, data):
+    if fmt == 'glb':
+        return mutate_glb(rng, data)
+    if fmt in ('bply', 'bstl'):
+        return mutate_binary(rng, data, fmt == 'bply')
+    return mutate_text(rng, data)
 
 
 def mutate_binary(rng, data, ply):
@@ -139,7 +204,7 @@ def main():
             open(base, 'wb').write(data)
             files.append(base)
             for k in range(args.per):
-                kind, bad = mutate_binary(rng, data, fmt == 'bply') if fmt in ('bply', 'bstl') else mutate_text(rng, data)
+                kind, bad = mutate(rng, fmt, data)
                 path = os.path.join(args.out, '%s_%s_%03d_%s.%s' % (name, fmt, k, kind, ext))
                 open(path, 'wb').write(bad)
                 files.append(path)

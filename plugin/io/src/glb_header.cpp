@@ -63,6 +63,8 @@ void checkGlbLengths(const ReadAt& readAt, std::uint64_t fileBytes, const std::s
     char type[4];
     readAt(at + 4, type, sizeof type);
     if (at + kChunkHeaderBytes + chunk > length) {
+      // A chunk's type is four ASCII letters ("JSON", "BIN\0"); a damaged one is not text.
+      for (char& c : type) c = c >= 0x20 && c < 0x7F ? c : '?';
       throw MeshFileError(pastTheEnd(name, "chunk " + quoted(std::string_view(type, sizeof type)), at,
                                      chunk, length));
     }
