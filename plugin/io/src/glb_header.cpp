@@ -1,9 +1,11 @@
-// checkGlbLengths: see glb_header.h. GLB 2.0: a 12-byte header (magic, version, total length),
-// then chunks of (length, type, data); GLB 1.0: the header, then (content length, content
-// format) and the JSON content.
+// checkGlbBytes, checkGlbFile: see glb_header.h. GLB 2.0: a 12-byte header (magic, version,
+// total length), then chunks of (length, type, data); GLB 1.0: the header, then (content
+// length, content format) and the JSON content.
 #include "glb_header.h"
 
 #include <cstring>
+#include <fstream>
+#include <functional>
 #include <string_view>
 
 #include "adb/io/mesh_file.h"
@@ -14,6 +16,10 @@ namespace {
 
 constexpr std::uint64_t kHeaderBytes = 12;
 constexpr std::uint64_t kChunkHeaderBytes = 8;
+
+// Reads `bytes` bytes at `offset` of the data into `out`; false if the data is shorter. The
+// check walks a file's chunk headers without reading the file, and a buffer's in place.
+using ReadAt = std::function<bool(std::uint64_t offset, void* out, std::size_t bytes)>;
 
 // The little-endian uint32 at `offset`.
 std::uint32_t word(const ReadAt& readAt, std::uint64_t offset, const std::string& name) {
@@ -30,8 +36,6 @@ std::string pastTheEnd(const std::string& name, const std::string& what, std::ui
          std::to_string(declared) + " bytes, past the end of the GLB (" +
          std::to_string(glbBytes) + " bytes)";
 }
-
-}  // namespace
 
 void checkGlbLengths(const ReadAt& readAt, std::uint64_t fileBytes, const std::string& name) {
   char magic[4];
@@ -65,11 +69,35 @@ void checkGlbLengths(const ReadAt& readAt, std::uint64_t fileBytes, const std::s
     if (at + kChunkHeaderBytes + chunk > length) {
       // A chunk's type is four ASCII letters ("JSON", "BIN\0"); a damaged one is not text.
       for (char& c : type) c = c >= 0x20 && c < 0x7F ? c : '?';
-      throw MeshFileError(pastTheEnd(name, "chunk " + quoted(std::string_view(type, sizeof type)), at,
-                                     chunk, length));
+      const std::string what = "chunk " + quoted(std::string_view(type, sizeof type));
+      throw MeshFileError(pastTheEnd(name, what, at, chunk, length));
     }
     at += kChunkHeaderBytes + chunk;
   }
+}
+
+}  // namespace
+
+void checkGlbBytes(const char* data, std::size_t size, const std::string& name) {
+  checkGlbLengths(
+      [&](std::uint64_t offset, void* out, std::size_t count) {
+        if (offset > size || count > size - offset) return false;
+        std::memcpy(out, data + offset, count);
+        return true;
+      },
+      size, name);
+}
+
+void checkGlbFile(const std::string& path, std::uint64_t fileBytes) {
+  std::ifstream in(path, std::ios::binary);
+  checkGlbLengths(
+      [&](std::uint64_t offset, void* out, std::size_t count) {
+        in.clear();
+        in.seekg(static_cast<std::streamoff>(offset));
+        in.read(static_cast<char*>(out), static_cast<std::streamsize>(count));
+        return in.gcount() == static_cast<std::streamsize>(count);
+      },
+      fileBytes, path);
 }
 
 }  // namespace adb::io::detail

@@ -9,7 +9,6 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <iterator>
@@ -20,6 +19,7 @@
 #include <optional>
 #include <system_error>
 
+#include "ascii_case.h"
 #include "assimp_log_capture.h"
 #include "glb_header.h"
 #include "isolated_read.h"
@@ -43,7 +43,8 @@ namespace fs = std::filesystem;
 constexpr unsigned kReadAsIs = 0;
 
 // Before assimp: its own answer for a missing or unreadable file is "Unable to open file".
-void checkReadable(const std::string& path, const LoadLimits& limits) {
+// Throws unless `path` is a readable, non-empty file within the limits; returns its size.
+std::uint64_t checkReadable(const std::string& path, const LoadLimits& limits) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) throw MeshFileError(path + ": no such file");
@@ -60,6 +61,7 @@ void checkReadable(const std::string& path, const LoadLimits& limits) {
     throw MeshFileError(path + ": " + std::to_string(size) + " bytes, more than the limit of " +
                         std::to_string(limits.maxFileBytes) + " (LoadLimits::maxFileBytes)");
   }
+  return size;
 }
 
 // assimp's scene, read by `read` (with no post-processing), checked, validated and
@@ -121,8 +123,7 @@ bool assimpExtension(const std::string& extension) {
   static const std::string list = [] {
     std::string l;
     Assimp::Importer().GetExtensionList(l);  // "*.3ds;*.obj;..."
-    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ";" + l + ";";
+    return ";" + detail::lowered(l) + ";";
   }();
   return !extension.empty() && list.find(";*." + extension + ";") != std::string::npos;
 }
@@ -139,8 +140,7 @@ OwnFormat ownFormat(const char* data, std::size_t size, const std::string& exten
   if (assimpExtension(extension)) return OwnFormat::None;
   if (detail::looksLikePly(data, size)) return OwnFormat::Ply;
   if (detail::looksLikeOff(data, size)) return OwnFormat::Off;
-  std::string head(data, std::min<std::size_t>(size, 200));
-  for (char& c : head) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string head = detail::lowered(std::string(data, std::min<std::size_t>(size, 200)));
   if (head.find("ply") != std::string::npos) return OwnFormat::Ply;
   if (head.find("off") != std::string::npos) return OwnFormat::Off;
   return OwnFormat::None;
@@ -163,8 +163,7 @@ bool mayBeGlb(const std::string& extension) {
 std::string lowerExtension(const std::string& path) {
   std::string e = fs::path(path).extension().string();
   if (!e.empty()) e.erase(0, 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
+  return detail::lowered(e);
 }
 
 // The whole file, for adb's own readers (its size is within the limits).
@@ -186,24 +185,15 @@ std::string head(const std::string& path) {
 }  // namespace
 
 adb::TriangleMesh loadMesh(const std::string& path, LoadReport* report, const LoadLimits& limits) {
-  checkReadable(path, limits);
+  const std::uint64_t size = checkReadable(path, limits);
   const std::string start = head(path);
-  const OwnFormat own = ownFormat(start.data(), start.size(), lowerExtension(path));
+  const std::string extension = lowerExtension(path);
+  const OwnFormat own = ownFormat(start.data(), start.size(), extension);
   if (own != OwnFormat::None) {
     const std::string bytes = contents(path);
     return readOwnFormat(own, bytes.data(), bytes.size(), path, report, limits);
   }
-  if (mayBeGlb(lowerExtension(path))) {
-    std::ifstream in(path, std::ios::binary);
-    const detail::ReadAt readAt = [&](std::uint64_t offset, void* out, std::size_t bytes) {
-      in.clear();
-      in.seekg(static_cast<std::streamoff>(offset));
-      in.read(static_cast<char*>(out), static_cast<std::streamsize>(bytes));
-      return in.gcount() == static_cast<std::streamsize>(bytes);
-    };
-    std::error_code ec;
-    detail::checkGlbLengths(readAt, fs::file_size(path, ec), path);
-  }
+  if (mayBeGlb(extension)) detail::checkGlbFile(path, size);
   return assimpMesh(
       [&](Assimp::Importer& importer) {
         detail::requireReaderForExtension(importer, path, *importer.GetIOHandler(), path);
@@ -220,23 +210,16 @@ adb::TriangleMesh loadMeshFromMemory(const void* data, std::size_t size,
     throw MeshFileError(name + ": " + std::to_string(size) + " bytes, more than the limit of " +
                         std::to_string(limits.maxFileBytes) + " (LoadLimits::maxFileBytes)");
   }
-  std::string hint = formatHint;
-  for (char& c : hint) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string hint = detail::lowered(formatHint);
   const char* bytes = static_cast<const char*>(data);
   const OwnFormat own = ownFormat(bytes, size, hint);
   if (own != OwnFormat::None) return readOwnFormat(own, bytes, size, name, report, limits);
-  if (mayBeGlb(hint)) {
-    const detail::ReadAt readAt = [&](std::uint64_t offset, void* out, std::size_t count) {
-      if (offset > size || count > size - offset) return false;
-      std::memcpy(out, bytes + offset, count);
-      return true;
-    };
-    detail::checkGlbLengths(readAt, size, name);
-  }
+  if (mayBeGlb(hint)) detail::checkGlbBytes(bytes, size, name);
   return assimpMesh(
       [&](Assimp::Importer& importer) {
         // The name and I/O system that ReadFileFromMemory gives assimp's readers.
-        Assimp::MemoryIOSystem io(static_cast<const std::uint8_t*>(data), size, importer.GetIOHandler());
+        Assimp::MemoryIOSystem io(static_cast<const std::uint8_t*>(data), size,
+                                  importer.GetIOHandler());
         detail::requireReaderForExtension(
             importer, std::string(AI_MEMORYIO_MAGIC_FILENAME) + "." + formatHint, io, name);
         return importer.ReadFileFromMemory(data, size, kReadAsIs, formatHint.c_str());

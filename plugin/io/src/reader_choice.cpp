@@ -4,31 +4,19 @@
 #include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 
-#include <cctype>
 #include <set>
 #include <vector>
 
 #include "adb/io/mesh_file.h"
+#include "ascii_case.h"
 
 namespace adb::io::detail {
-namespace {
-
-bool endsWithNoCase(const std::string& text, const std::string& end) {
-  if (end.size() > text.size()) return false;
-  for (std::size_t i = 0; i < end.size(); ++i) {
-    const auto a = static_cast<unsigned char>(text[text.size() - end.size() + i]);
-    const auto b = static_cast<unsigned char>(end[i]);
-    if (std::tolower(a) != std::tolower(b)) return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 void requireReaderForExtension(const Assimp::Importer& importer, const std::string& assimpPath,
                                Assimp::IOSystem& io, const std::string& name) {
   // The readers that claim the path's ending, as assimp's Importer::ReadFile gathers them
   // (the whole ending is compared: some extensions hold a dot).
+  const std::string path = lowered(assimpPath);
   std::vector<Assimp::BaseImporter*> claimants;
   std::string extension;
   for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
@@ -36,7 +24,9 @@ void requireReaderForExtension(const Assimp::Importer& importer, const std::stri
     std::set<std::string> extensions;
     reader->GetExtensionList(extensions);
     for (const std::string& e : extensions) {
-      if (endsWithNoCase(assimpPath, "." + e)) {
+      const std::string ending = "." + lowered(e);
+      if (path.size() >= ending.size() &&
+          path.compare(path.size() - ending.size(), ending.size(), ending) == 0) {
         claimants.push_back(reader);
         extension = e;
         break;
