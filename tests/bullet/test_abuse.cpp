@@ -9,7 +9,7 @@
 // for bit. Not asserted: that nothing falls through the ground. Some bodies do, and a plane
 // below catches them: the tiny and the flat ones (no CCD for mesh bodies), thin boxes whose
 // centre passes a face (triangles are two-sided to convex shapes, as Bullet's are), and
-// under the budget bodies starved by the whole pairs of those resting on the plane.
+// under the budget bodies starved of it (docs/reliability.md, "Budget starvation").
 #include <gtest/gtest.h>
 
 #include <btBulletDynamicsCommon.h>

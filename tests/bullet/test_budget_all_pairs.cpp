@@ -1,13 +1,15 @@
 // One budget for every pair that involves an adb mesh: mesh-mesh, mesh against boxes,
 // spheres and capsules, a static plane, and meshes inside btCompoundShapes all run within
 // the step's node-pair budget; pairs the budget skips keep their last contacts; nothing
-// falls through the floor and no NaN appears.
+// falls through the floor and no NaN appears. (The last test measures where a stacked body
+// still sinks under a budget: a mesh-mesh pair cut step after step.)
 #include <gtest/gtest.h>
 
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -57,6 +59,7 @@ struct PileRun {
   std::vector<FrameStats> steps;
   double lowest = std::numeric_limits<double>::infinity();  // lowest body centre, any step
   double lowestAtEnd = std::numeric_limits<double>::infinity();  // after the last step
+  std::vector<double> heightsAtEnd;  // every dynamic body's centre, in the order added
   bool finite = true;
 };
 
@@ -81,6 +84,9 @@ PileRun simulate(const FrameSettings& settings, int steps, void (*build)(World&)
     run.lowest = std::min(run.lowest, lowestNow());
   }
   run.lowestAtEnd = lowestNow();
+  for (const auto& b : w.bodies) {
+    if (b->getInvMass() > 0) run.heightsAtEnd.push_back(b->getWorldTransform().getOrigin().y());
+  }
   return run;
 }
 
@@ -180,6 +186,72 @@ TEST(BudgetAllPairs, RestingPairsWithTheWorldLeaveABindingBudgetToTheMeshPairs) 
   // Nothing through the floor: no centre below its top (a knot rests ~0.2 above it).
   EXPECT_GT(exact.lowest, 0.0);
   EXPECT_GT(cut.lowest, 0.0);
+}
+
+// 20 flat tori in two layers on a static adb slab, and 10 gears 6 cm across resting on a
+// plane 3 m below it (`gears` of them): many small resting bodies beside a pile.
+void addToriAndGears(World& w, int gears) {
+  w.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0), 0, btVector3(0, -3, 0));
+  w.add(MeshData::build(gen::makeBox(Vec3(3, 0.5, 3), 4)), 0, btVector3(0, -0.5f, 0));
+  const auto torus = MeshData::build(test::flatTorus(0.4, 0.15));
+  for (int i = 0; i < 20; ++i) {
+    const btVector3 at(btScalar(-2.2 + (i % 5) * 1.1), btScalar(0.3 + (i / 10) * 0.5),
+                       btScalar(-1.5 + ((i / 5) % 2) * 1.1 + (i / 10) * 0.55));
+    w.add(torus, 1, at)->setActivationState(DISABLE_DEACTIVATION);
+  }
+  const auto gear = MeshData::build(gen::makeGear(12, 0.03, 0.024, 0.008, 0.01, 4));
+  for (int i = 0; i < gears; ++i) {
+    const btVector3 at(btScalar(4 + (i % 5) * 0.2), -2.9f, btScalar((i / 5) * 0.2));
+    w.add(gear, btScalar(0.01), at)->setActivationState(DISABLE_DEACTIVATION);
+  }
+}
+void addToriAndTenGears(World& w) { addToriAndGears(w, 10); }
+void addToriAlone(World& w) { addToriAndGears(w, 0); }
+
+TEST(BudgetAllPairs, SmallBodiesRestingOnAPlaneLeaveTheBudgetToThePile) {
+  // Under a binding budget the gears' pairs with the plane mostly rest and keep their
+  // contacts: the world's pairs take a small part of the budget (measured: 186 of 9,487 node
+  // pairs; 1,054 with the resting rule off, 570 with exact contacts, where every pair runs).
+  // What this scene also shows, and does not assert, is the weakness
+  // of cut mesh-mesh pairs (docs/reliability.md, "Budget starvation"): the first pass's even
+  // shares use the whole budget, a pair that needs far more than a share is cut step after
+  // step, and a torus lying on another can sink through it. The counts are printed.
+  constexpr std::size_t kSettled = 150, kSteps = 240;
+  const PileRun exact = simulate(FrameSettings{}, kSteps, addToriAndTenGears);
+  double need = 0.0, exactWorld = 0.0;
+  for (std::size_t i = kSettled; i < kSteps; ++i) {
+    need += double(exact.steps[i].neededNodePairs);
+    exactWorld += double(exact.steps[i].otherNodePairs);
+  }
+  need /= double(kSteps - kSettled);
+  exactWorld /= double(kSteps - kSettled);
+  FrameSettings half;
+  half.budgetNodePairs = static_cast<std::uint64_t>(need / 2);
+  std::printf("exact contacts: need %.0f node pairs per step, of which the world's pairs %.0f\n",
+              need, exactWorld);
+  const auto fallen = [](const PileRun& run) {  // tori whose centre left the slab's top
+    int n = 0;
+    for (std::size_t i = 0; i < 20; ++i) n += run.heightsAtEnd[i] < -0.2 ? 1 : 0;
+    return n;
+  };
+  for (auto build : {addToriAndTenGears, addToriAlone}) {
+    const PileRun cut = simulate(half, kSteps, build);
+    double world = 0.0, queries = 0.0, pairs = 0.0;
+    for (std::size_t i = kSettled; i < kSteps; ++i) {
+      world += double(cut.steps[i].otherNodePairs);
+      queries += cut.steps[i].queries;
+      pairs += cut.steps[i].pairs;
+    }
+    world /= double(kSteps - kSettled);
+    std::printf("%s, budget %llu (half the need): world pairs %.0f node pairs (%.2f %% of it), "
+                "%.2f queries per mesh-mesh pair, %d of 20 tori fell through\n",
+                build == addToriAlone ? "without gears" : "with 10 gears",
+                static_cast<unsigned long long>(half.budgetNodePairs), world,
+                100.0 * world / double(half.budgetNodePairs), queries / pairs, fallen(cut));
+    EXPECT_LT(world, 0.5 * exactWorld);
+    EXPECT_TRUE(cut.finite);
+  }
+  EXPECT_EQ(fallen(exact), 0);
 }
 
 }  // namespace

@@ -518,8 +518,9 @@ TEST_F(MeshFileTest, DataNoReaderOfItsExtensionRecognisesIsRefusedAtOnce) {
 }
 
 // assimp's glTF readers allocate and zero the JSON chunk's declared length before reading it:
-// a damaged length in a 217 kB GLB took 3.4 GB and 2.9 s. Every length a GLB declares is
-// checked against the file first (glb_header.h), by file and from memory.
+// a damaged length in a 217 kB GLB took 3.3 GB and up to 7.4 s (docs/reliability.md). Every
+// length a GLB declares is checked against the file first (glb_header.h), by file and from
+// memory.
 TEST_F(MeshFileTest, GlbLengthsPastTheEndOfTheFileAreNamed) {
   std::ifstream in(std::string(ADB_FUZZ_CORPUS) + "/mesh_gltf/cube.glb", std::ios::binary);
   const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
