@@ -90,6 +90,16 @@ PileRun simulate(const FrameSettings& settings, int steps, void (*build)(World&)
   return run;
 }
 
+// The mean of `value` (a FrameStats field) over the steps from `from` on: the settled pile.
+template <class Value>
+double settledMean(const PileRun& run, std::size_t from, Value value) {
+  double sum = 0.0;
+  for (std::size_t i = from; i < run.steps.size(); ++i) sum += double(value(run.steps[i]));
+  return sum / double(run.steps.size() - from);
+}
+double neededNodePairs(const FrameStats& s) { return double(s.neededNodePairs); }
+double worldNodePairs(const FrameStats& s) { return double(s.otherNodePairs); }
+
 TEST(BudgetAllPairs, EveryPairKindIsScheduledAndCompoundChildrenCount) {
   const PileRun exact = simulate(FrameSettings{}, 240, addMixedPile);
   std::uint32_t meshMesh = 0, others = 0;
@@ -161,23 +171,14 @@ TEST(BudgetAllPairs, RestingPairsWithTheWorldLeaveABindingBudgetToTheMeshPairs) 
   // goes to the pairs that changed.
   constexpr std::size_t kSettled = 150, kSteps = 240;
   const PileRun exact = simulate(FrameSettings{}, kSteps, addBoxFloorScene);
-  double need = 0.0, exactWorld = 0.0;
-  for (std::size_t i = kSettled; i < kSteps; ++i) {
-    need += double(exact.steps[i].neededNodePairs);
-    exactWorld += double(exact.steps[i].otherNodePairs);
-  }
-  need /= double(kSteps - kSettled);
-  exactWorld /= double(kSteps - kSettled);
+  const double exactWorld = settledMean(exact, kSettled, worldNodePairs);
   FrameSettings tight;
-  tight.budgetNodePairs = static_cast<std::uint64_t>(need / 4);
+  tight.budgetNodePairs =
+      static_cast<std::uint64_t>(settledMean(exact, kSettled, neededNodePairs) / 4);
   const PileRun cut = simulate(tight, kSteps, addBoxFloorScene);
-  double world = 0.0, kept = 0.0;
-  for (std::size_t i = kSettled; i < kSteps; ++i) {
-    world += double(cut.steps[i].otherNodePairs);
-    kept += cut.steps[i].otherKeptPairs;
-  }
-  world /= double(kSteps - kSettled);
-  kept /= double(kSteps - kSettled);
+  const double world = settledMean(cut, kSettled, worldNodePairs);
+  const double kept =
+      settledMean(cut, kSettled, [](const FrameStats& s) { return s.otherKeptPairs; });
   // The resting knots' pairs keep their contacts (measured: 8.1 of 10 per step; 3.0 when
   // every pair with the world runs while it fits), and the world's pairs use at most half
   // the work they need with exact contacts (measured: 290 against 1,250; 985 before).
@@ -212,19 +213,14 @@ TEST(BudgetAllPairs, SmallBodiesRestingOnAPlaneLeaveTheBudgetToThePile) {
   // Under a binding budget the gears' pairs with the plane mostly rest and keep their
   // contacts: the world's pairs take a small part of the budget (measured: 186 of 9,487 node
   // pairs; 1,054 with the resting rule off, 570 with exact contacts, where every pair runs).
-  // What this scene also shows, and does not assert, is the weakness
-  // of cut mesh-mesh pairs (docs/reliability.md, "Budget starvation"): the first pass's even
-  // shares use the whole budget, a pair that needs far more than a share is cut step after
-  // step, and a torus lying on another can sink through it. The counts are printed.
+  // What this scene also shows, and does not assert, is the weakness of cut mesh-mesh pairs
+  // (docs/reliability.md, "Budget starvation"): the first pass's even shares use the whole
+  // budget, a pair that needs far more than a share is cut step after step, and a torus
+  // lying on another can sink through it. The counts are printed.
   constexpr std::size_t kSettled = 150, kSteps = 240;
   const PileRun exact = simulate(FrameSettings{}, kSteps, addToriAndTenGears);
-  double need = 0.0, exactWorld = 0.0;
-  for (std::size_t i = kSettled; i < kSteps; ++i) {
-    need += double(exact.steps[i].neededNodePairs);
-    exactWorld += double(exact.steps[i].otherNodePairs);
-  }
-  need /= double(kSteps - kSettled);
-  exactWorld /= double(kSteps - kSettled);
+  const double need = settledMean(exact, kSettled, neededNodePairs);
+  const double exactWorld = settledMean(exact, kSettled, worldNodePairs);
   FrameSettings half;
   half.budgetNodePairs = static_cast<std::uint64_t>(need / 2);
   std::printf("exact contacts: need %.0f node pairs per step, of which the world's pairs %.0f\n",
@@ -236,18 +232,15 @@ TEST(BudgetAllPairs, SmallBodiesRestingOnAPlaneLeaveTheBudgetToThePile) {
   };
   for (auto build : {addToriAndTenGears, addToriAlone}) {
     const PileRun cut = simulate(half, kSteps, build);
-    double world = 0.0, queries = 0.0, pairs = 0.0;
-    for (std::size_t i = kSettled; i < kSteps; ++i) {
-      world += double(cut.steps[i].otherNodePairs);
-      queries += cut.steps[i].queries;
-      pairs += cut.steps[i].pairs;
-    }
-    world /= double(kSteps - kSettled);
+    const double world = settledMean(cut, kSettled, worldNodePairs);
+    const double queriesPerPair =
+        settledMean(cut, kSettled, [](const FrameStats& s) { return s.queries; }) /
+        settledMean(cut, kSettled, [](const FrameStats& s) { return s.pairs; });
     std::printf("%s, budget %llu (half the need): world pairs %.0f node pairs (%.2f %% of it), "
                 "%.2f queries per mesh-mesh pair, %d of 20 tori fell through\n",
                 build == addToriAlone ? "without gears" : "with 10 gears",
                 static_cast<unsigned long long>(half.budgetNodePairs), world,
-                100.0 * world / double(half.budgetNodePairs), queries / pairs, fallen(cut));
+                100.0 * world / double(half.budgetNodePairs), queriesPerPair, fallen(cut));
     EXPECT_LT(world, 0.5 * exactWorld);
     EXPECT_TRUE(cut.finite);
   }
