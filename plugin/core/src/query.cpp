@@ -39,6 +39,7 @@
 #include <limits>
 #include <string>
 
+#include "adb/core/triangle_distance.h"
 #include "adb/core/triangle_test.h"
 #include "format_number.h"
 #include "pair_probability.h"
@@ -173,6 +174,9 @@ struct Traversal::Impl {
     a = {&ta, ta.maxDepth()};
     b = {&tb, tb.maxDepth()};
     frame = detail::RelativeFrame::between(ta, poseA, tb, poseB);
+    // Every box test separates along unit axes: a gap larger than the margin along any of
+    // them proves the nodes farther apart than the margin.
+    frame.slack += s.contactMargin;
     settings = s;
     heap.clear();
     witnesses.clear();
@@ -247,9 +251,16 @@ struct Traversal::Impl {
   void addWitness(const Witness& w) {
     if (witnesses.size() < settings.maxWitnesses) {
       witnesses.push_back(w);
-    } else {
-      ++result.witnessesDropped;
+      return;
     }
+    ++result.witnessesDropped;
+    // With a contact margin a full list keeps the closest pairs: the contacts that matter
+    // are where the meshes meet first, not the first pairs the descent happened to find.
+    if (!(settings.contactMargin > 0.0) || witnesses.empty()) return;
+    auto farthest = std::max_element(
+        witnesses.begin(), witnesses.end(),
+        [](const Witness& x, const Witness& y) { return x.distance < y.distance; });
+    if (w.distance < farthest->distance) *farthest = w;
   }
 
   // Whether the hit just found ends the query (stopAtFirstHit, or the witnesses are full),
@@ -306,9 +317,11 @@ struct Traversal::Impl {
       hi = hi.cwiseMax(hiA[i]);
     }
     // Triangle pairs whose boxes are apart by more than this are skipped untested: it is a
-    // thousand times trianglesIntersect's tolerance (1e-12 of the pair's extent), so the
-    // answer is the one the test would give. Most pairs of two overlapping leaves are apart.
-    const double gap = 1e-9 * (hi - lo).maxCoeff();
+    // thousand times trianglesIntersect's tolerance (1e-12 of the pair's extent) beyond the
+    // contact margin, so the answer is the one the tests would give. Most pairs of two
+    // overlapping leaves are apart.
+    const double margin = settings.contactMargin;
+    const double gap = 1e-9 * (hi - lo).maxCoeff() + margin;
     bool hit = false;
     for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
       const Triangle& t = ta[na.firstTriangle() + i];
@@ -316,12 +329,20 @@ struct Traversal::Impl {
         if (boxesApart(loA[i], hiA[i], loB[j], hiB[j], gap)) continue;
         ++work.triangleTests;
         ++workSinceClock;
+        float distance = 0.0f;
         if (!trianglesIntersect(va[t[0]], va[t[1]], va[t[2]], mapped[j][0], mapped[j][1],
                                 mapped[j][2])) {
-          continue;
+          if (!(margin > 0.0)) continue;
+          const double d = triangleDistance(va[t[0]], va[t[1]], va[t[2]], mapped[j][0],
+                                            mapped[j][1], mapped[j][2])
+                               .distance;
+          if (!(d <= margin)) continue;
+          // Rounded up: a near pair never reads as touching.
+          distance = std::max(std::nextafter(0.0f, 1.0f), static_cast<float>(d));
         }
         hit = true;
         Witness w;
+        w.distance = distance;
         w.nodeA = ia;
         w.nodeB = ib;
         w.triangleA = na.firstTriangle() + i;
@@ -675,6 +696,10 @@ void validate(const QuerySettings& s) {
   if (s.regionDepth < 0) {
     throw SettingsError("QuerySettings::regionDepth is " + std::to_string(s.regionDepth) +
                         "; it must be >= 0");
+  }
+  if (!(std::isfinite(s.contactMargin) && s.contactMargin >= 0.0)) {
+    throw SettingsError("QuerySettings::contactMargin is " +
+                        detail::formatNumber(s.contactMargin) + "; it must be finite and >= 0");
   }
   if (std::isnan(s.budgetMicros) || s.budgetMicros < 0.0) {
     throw SettingsError("QuerySettings::budgetMicros is " + detail::formatNumber(s.budgetMicros) +

@@ -98,6 +98,14 @@ struct QuerySettings {
   int regionDepth = 8;
   /// Exact mode's descent order (ADB mode follows its probabilities).
   ExactDescent descent = ExactDescent::Auto;
+  /// Contact margin, in the trees' (world) units, >= 0: triangle pairs closer than this count
+  /// as hits too (Witness::distance > 0), so that a contact can be made before the meshes
+  /// touch, as Bullet's convex algorithms do within their breaking threshold. `collides`
+  /// then says whether the meshes come within the margin. Boxes are tested grown by the
+  /// margin; the probability model ignores it (its cells count intersections only). A full
+  /// witness list then keeps the closest pairs (crossing ones count as 0 apart): a closer
+  /// hit replaces the farthest witness.
+  double contactMargin = 0.0;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
@@ -107,6 +115,9 @@ struct Witness {
   std::uint32_t triangleA = kNoTriangle;    // tree-order triangle indices when exact
   std::uint32_t triangleB = kNoTriangle;
   float probability = 0.0f;                 // 1 for exact triangle pairs
+  /// Exact triangle pairs: 0 when they intersect; within QuerySettings::contactMargin, how
+  /// far apart they are.
+  float distance = 0.0f;
   static constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
   bool isExact() const { return triangleA != kNoTriangle; }
 };
@@ -255,7 +266,8 @@ const char* describe(PoseDefect defect);
 /// Tests tree `a` at `poseA` against tree `b` at `poseB` (poses map each mesh's own
 /// coordinates to the world). Throws SettingsError for invalid settings (pMin outside [0, 1],
 /// kMin < 1, NaN or negative budget, negative regionDepth) and PoseError for a bad pose
-/// (non-finite, a translation beyond 1e150, or a rotation off orthonormal by more than 1e-6);
+/// (non-finite, a translation beyond 1e150, or a rotation off orthonormal by more than 1e-6;
+/// a negative or non-finite contactMargin);
 /// never throws for a valid call.
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch);
