@@ -12,6 +12,7 @@
 #include "adb/bullet/dispatcher.h"
 #include "conversions.h"
 #include "frame_scheduler.h"
+#include "speculative_result.h"
 
 namespace adb {
 
@@ -27,6 +28,7 @@ ManifoldAlgorithm::ManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo&
 
 ManifoldAlgorithm::~ManifoldAlgorithm() {
   if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
+  if (m_speculativeManifold) m_dispatcher->releaseManifold(m_speculativeManifold);
 }
 
 void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
@@ -34,16 +36,28 @@ void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                          const btDispatcherInfo& info,
                                          btManifoldResult* result) {
   if (!acceptPoses(body0, body1)) return;
+  // The manifold is made now, in Bullet's dispatch order, not when the scheduler first
+  // writes contacts: the solver visits manifolds in the order they were made, and a budget
+  // that reorders the writing (a pair cut, then completed by a refinement) must not
+  // reorder the solver, or a budget that is never reached would change the simulation.
+  ensureManifold(body0, body1);
+  setReach(body0, body1, info.m_timeStep);
   if (m_scheduler && m_scheduler->collecting()) {
-    // The manifold is made now, in Bullet's dispatch order, not when the scheduler first
-    // writes contacts: the solver visits manifolds in the order they were made, and a budget
-    // that reorders the writing (a pair cut, then completed by a refinement) must not
-    // reorder the solver, or a budget that is never reached would change the simulation.
-    ensureManifold(body0, body1);
     m_scheduler->defer(this, body0, body1);
     return;
   }
-  m_lastWork = collideNow(body0, body1, info, result);
+  m_lastWork = collideWithReach(body0, body1, info, result);
+}
+
+std::uint64_t ManifoldAlgorithm::collideWithReach(const btCollisionObjectWrapper* body0,
+                                                  const btCollisionObjectWrapper* body1,
+                                                  const btDispatcherInfo& info,
+                                                  btManifoldResult* result) {
+  btPersistentManifold* speculative = speculativeManifold();
+  if (!speculative) return collideNow(body0, body1, info, result);
+  result->setPersistentManifold(m_manifold);  // as collideNow would leave it
+  detail::SpeculativeResult reach(*result, speculative, m_threshold + m_speculative);
+  return collideNow(body0, body1, info, &reach);
 }
 
 void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
@@ -93,8 +107,51 @@ btScalar ManifoldAlgorithm::motionSinceLastRun(const btTransform& transform0,
   return (now.getOrigin() - last).length() + 2 * sine * static_cast<btScalar>(m_meshReach);
 }
 
-btScalar ManifoldAlgorithm::breakingThreshold() const {
-  return m_manifold ? m_manifold->getContactBreakingThreshold() : btScalar(0);
+namespace {
+
+// How fast any point of a body can move: |v| + |w| r, r the farthest point of its shape
+// from its origin. 0 for anything but a rigid body.
+btScalar pointSpeedBound(const btCollisionObjectWrapper* body) {
+  const btRigidBody* rigid = btRigidBody::upcast(body->getCollisionObject());
+  if (!rigid) return 0;
+  btVector3 centre;
+  btScalar radius = 0;
+  body->getCollisionShape()->getBoundingSphere(centre, radius);
+  return rigid->getLinearVelocity().length() +
+         rigid->getAngularVelocity().length() * (centre.length() + radius);
+}
+
+// Whether a body asks for continuous collision detection and moves farther than its
+// threshold in this step: Bullet's own test for its convex sweeps
+// (btDiscreteDynamicsWorld::integrateTransforms).
+bool wantsSweep(const btCollisionObjectWrapper* body, btScalar timeStep) {
+  const btRigidBody* rigid = btRigidBody::upcast(body->getCollisionObject());
+  if (!rigid || rigid->getCcdSquareMotionThreshold() <= 0) return false;
+  const btScalar motion = rigid->getLinearVelocity().length() * timeStep;
+  return motion * motion > rigid->getCcdSquareMotionThreshold();
+}
+
+}  // namespace
+
+// Bodies that do not ask for a sweep get no speculative contacts, so nothing changes for
+// them.
+void ManifoldAlgorithm::setReach(const btCollisionObjectWrapper* body0,
+                                 const btCollisionObjectWrapper* body1, btScalar timeStep) {
+  m_speculative = 0;
+  if (timeStep > 0 && (wantsSweep(body0, timeStep) || wantsSweep(body1, timeStep))) {
+    // Any two points of the bodies close by at most the sum of their speed bounds in a
+    // step. acceptPoses refused non-finite velocities; a huge one still gives a finite reach.
+    const btScalar closing = (pointSpeedBound(body0) + pointSpeedBound(body1)) * timeStep;
+    if (std::isfinite(closing)) m_speculative = closing;
+  }
+  if (m_speculative > 0 && !m_speculativeManifold) {
+    m_speculativeManifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
+                                                         body1->getCollisionObject());
+  }
+  if (!m_speculativeManifold) return;
+  // Last step's speculative points said where the bodies might meet then: start afresh.
+  m_speculativeManifold->clearManifold();
+  m_speculativeManifold->setContactBreakingThreshold(m_threshold + m_speculative);
 }
 
 void ManifoldAlgorithm::ensureManifold(const btCollisionObjectWrapper* body0,
@@ -102,6 +159,7 @@ void ManifoldAlgorithm::ensureManifold(const btCollisionObjectWrapper* body0,
   if (!m_manifold) {
     m_manifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
                                                body1->getCollisionObject());
+    m_threshold = m_manifold->getContactBreakingThreshold();
   }
 }
 

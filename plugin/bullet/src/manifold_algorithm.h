@@ -2,8 +2,8 @@
 // CreateAlgorithm, the factory Bullet's dispatcher calls.
 //
 // Shared: which body is the mesh, one persistent manifold made on first use and released
-// with the algorithm, no continuous collision detection, the pose check, and the hand-over
-// to the step's scheduler. Under adb::Dispatcher every pair (a compound's children included)
+// with the algorithm, the reach of its contacts (speculative for fast bodies that ask for
+// continuous collision detection), the pose check, and the hand-over to the step's scheduler. Under adb::Dispatcher every pair (a compound's children included)
 // is only noted while Bullet dispatches; the scheduler then runs them all within the step's
 // one budget (frame_scheduler.h). Elsewhere (a plain btCollisionDispatcher, contactTest) a
 // pair is collided at once.
@@ -55,7 +55,7 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
                                  const btCollisionObjectWrapper* body1,
                                  const btDispatcherInfo& info, btManifoldResult* result,
                                  std::uint64_t step) {
-    m_lastWork = collideNow(body0, body1, info, result);
+    m_lastWork = collideWithReach(body0, body1, info, result);
     m_lastRun = step;
     rememberPoses(body0, body1);
     return m_lastWork;
@@ -71,8 +71,15 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   std::uint64_t lastWork() const { return m_lastWork; }
   /// The scheduler's step at which collideScheduled last ran (0: never).
   std::uint64_t lastRun() const { return m_lastRun; }
-  /// The pair's manifold's contact breaking threshold (0 before it has one).
-  btScalar breakingThreshold() const;
+  /// The contact breaking threshold Bullet gave the pair's manifold (0 before it has one).
+  btScalar breakingThreshold() const { return m_threshold; }
+  /// How much farther than the breaking threshold contacts reach this step: where either
+  /// body asks for continuous collision detection (setCcdMotionThreshold) and moves more than
+  /// its threshold in this step, how far the bodies can close in the step; 0 otherwise.
+  /// Contacts that far apart are speculative: Bullet's solver removes only the approach that
+  /// would carry the bodies past them. They go to a second manifold of the pair
+  /// (speculative_result.h), rebuilt every step.
+  btScalar speculativeReach() const { return m_speculative; }
   /// Refreshes the pair's manifold for the bodies' new poses (Bullet's refreshContactPoints)
   /// without colliding: what a pair the budget skipped keeps from its last step.
   void keepLastContacts(const btCollisionObjectWrapper* body0,
@@ -80,10 +87,11 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
 
   btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
                                  btManifoldResult*) override {
-    return 1;  // no continuous collision detection against meshes
+    return 1;  // Bullet sweeps only convex bodies; meshes get speculative contacts instead
   }
   void getAllContactManifolds(btManifoldArray& manifolds) override {
     if (m_manifold) manifolds.push_back(m_manifold);
+    if (m_speculativeManifold) manifolds.push_back(m_speculativeManifold);
   }
 
  protected:
@@ -92,6 +100,10 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
                                     const btCollisionObjectWrapper* body1,
                                     btManifoldResult* result);
   detail::FrameScheduler* scheduler() const { return m_scheduler; }
+  /// The manifold of this step's speculative contacts, or null when there are none to make.
+  btPersistentManifold* speculativeManifold() const {
+    return m_speculative > 0 ? m_speculativeManifold : nullptr;
+  }
 
   bool m_swapped;
 
@@ -108,9 +120,18 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// Keeps the mesh's pose in the other body's frame, and how far its points reach from
   /// its origin, for motionSinceLastRun.
   void rememberPoses(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1);
+  /// collideNow through a result that sends speculative contacts to their manifold.
+  std::uint64_t collideWithReach(const btCollisionObjectWrapper* body0,
+                                 const btCollisionObjectWrapper* body1,
+                                 const btDispatcherInfo& info, btManifoldResult* result);
+  /// Sets speculativeReach() for this step and empties the speculative manifold (made on
+  /// first use).
+  void setReach(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                btScalar timeStep);
   btTransform meshInOther(const btTransform& transform0, const btTransform& transform1) const;
 
   btPersistentManifold* m_manifold = nullptr;
+  btPersistentManifold* m_speculativeManifold = nullptr;
   detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
   std::uint64_t m_lastWork = 0;
   std::uint64_t m_lastRun = 0;
@@ -121,6 +142,8 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   btScalar m_lastOrigin[3] = {0, 0, 0};
   float m_lastRotation[4] = {0, 0, 0, 1};
   float m_meshReach = 0;  // the farthest point of the mesh from its origin, bounded
+  btScalar m_threshold = 0;    // the manifold's breaking threshold as Bullet made it
+  btScalar m_speculative = 0;  // speculativeReach() of this step
 };
 
 /// The dispatcher's factory for an algorithm constructed as Algo(ci, body0, body1, swapped);

@@ -204,7 +204,7 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
   const double threshold = btMax(manifold->getContactBreakingThreshold(),
                                  result->m_closestPointDistanceThreshold);
   const double meshMargin = mesh->getMargin();
-  const double reach = threshold + meshMargin;
+  const double reach = threshold + meshMargin + speculativeReach();
   const Pose convexInMesh = toPose(meshPose.inverseTimes(convexWrap->getWorldTransform()));
   if (!convexInMesh.rotation.allFinite() || !convexInMesh.translation.allFinite()) return 0;
   const LocalConvex local = localConvex(*convex, convexInMesh, tree.origin(), reach);
@@ -239,7 +239,8 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
         boxTriangleContacts(local.box, a, b, c, reach, found);
         break;
     }
-    addCandidates(found, meshPose, tree.origin(), meshMargin, threshold, meshIsBody0,
+    addCandidates(found, meshPose, tree.origin(), meshMargin, threshold + speculativeReach(),
+                  meshIsBody0,
                   static_cast<int>(tree.meshTriangle(t)), selection);
     double deepest = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < found.count; ++i) deepest = std::max(deepest, -found.points[i].separation);

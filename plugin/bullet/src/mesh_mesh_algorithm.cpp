@@ -11,6 +11,7 @@
 #include "conversions.h"
 #include "frame_scheduler.h"
 #include "pair_contacts.h"
+#include "speculative_result.h"
 
 namespace adb {
 namespace {
@@ -30,7 +31,13 @@ constexpr std::uint32_t kMaxContactPairs = 64;
 constexpr std::uint32_t kHitsPerRegion = 4;
 constexpr int kRegionDepth = 8;
 
-QuerySettings forContacts(QuerySettings s) {
+// Contacts between meshes come from crossing triangles, and, for a fast body that asks for
+// continuous collision detection, from triangle pairs within the distance the bodies can close
+// in the step (speculativeReach, QuerySettings::contactMargin). A margin at Bullet's breaking
+// threshold for every pair was tried: on the gallery pile it cost 4.5x the time (the node
+// pairs within 0.011 of each other, not only the crossing ones) and the pile no longer came
+// to rest (22 of 30 bodies at 1,200 steps, against all 30 from step 600 without it).
+QuerySettings forContacts(QuerySettings s, double margin) {
   s.stopAtFirstHit = false;
   s.maxWitnesses = kMaxContactPairs;
   s.hitsPerRegion = kHitsPerRegion;
@@ -38,6 +45,15 @@ QuerySettings forContacts(QuerySettings s) {
   // Contacts come from the witnesses: once they are full, every further hit would be
   // dropped, and the rest of the descent would change nothing but its own cost.
   s.stopWhenWitnessesFull = true;
+  if (margin > 0.0) {
+    // Speculative contacts must be the closest pairs (the witnesses keep the closest once
+    // full), not the first the descent finds: sampled per region in the trees' order, a gear
+    // at 30 m/s got contacts 0.38 to 0.5 apart, with slanted normals, where the wall was 0.3
+    // away, and went through it.
+    s.contactMargin = margin;
+    s.hitsPerRegion = 0;
+    s.stopWhenWitnessesFull = false;
+  }
   return s;
 }
 
@@ -59,7 +75,7 @@ std::uint64_t MeshMeshAlgorithm::collideNow(const btCollisionObjectWrapper* body
   QuerySettings settings;
   settings.mode = QueryMode::Exact;
   if (!start(meshOf(body0).tree(), body0->getWorldTransform(), meshOf(body1).tree(),
-             body1->getWorldTransform(), forContacts(settings))) {
+             body1->getWorldTransform(), forContacts(settings, contactMargin()))) {
     return 0;
   }
   const QueryResult& r = m_traversal.step();
@@ -74,7 +90,8 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
   if (!resume) {
     const auto& shape0 = *static_cast<const MeshShape*>(pair.shape0);
     const auto& shape1 = *static_cast<const MeshShape*>(pair.shape1);
-    start(shape0.tree(), pair.transform0, shape1.tree(), pair.transform1, forContacts(settings));
+    start(shape0.tree(), pair.transform0, shape1.tree(), pair.transform1,
+          forContacts(settings, contactMargin()));
   }
   const QueryResult& r = m_traversal.step(budget);
   m_lastStop = r.stop;
@@ -87,6 +104,12 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
     m_needed = std::max(m_needed, 2 * r.nodePairs);
   }
   return r;
+}
+
+double MeshMeshAlgorithm::contactMargin() const {
+  // Near pairs within Bullet's threshold too, once there is a gap to speculate over.
+  return speculativeReach() > 0 ? static_cast<double>(breakingThreshold() + speculativeReach())
+                                : 0.0;
 }
 
 bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform0,
@@ -108,7 +131,9 @@ bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform
 ContactCount MeshMeshAlgorithm::writeContacts(const detail::DeferredPair& pair,
                                               const FrameSettings& settings) {
   const detail::PairWrappers wrappers(pair);
-  btManifoldResult result(&wrappers.body0, &wrappers.body1);
+  const btManifoldResult plain(&wrappers.body0, &wrappers.body1);
+  detail::SpeculativeResult result(plain, speculativeManifold(),
+                                   breakingThreshold() + speculativeReach());
   return addContacts(&wrappers.body0, &wrappers.body1, result, settings);
 }
 

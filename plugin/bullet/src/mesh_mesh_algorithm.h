@@ -56,6 +56,9 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
 
  private:
+  /// The query's contact margin: 0, or for a pair with speculative contacts, Bullet's
+  /// threshold plus the speculative reach.
+  double contactMargin() const;
   // Resets the traversal for a new query; false (and an empty traversal) for a bad pose.
   bool start(const AdbTree& tree0, const btTransform& transform0, const AdbTree& tree1,
              const btTransform& transform1, const QuerySettings& settings);

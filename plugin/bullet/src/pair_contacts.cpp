@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "adb/core/triangle_contact.h"
+#include "adb/core/triangle_distance.h"
 #include "conversions.h"
 
 namespace adb::detail {
@@ -108,6 +109,21 @@ btManifoldPoint* findPoint(btPersistentManifold& manifold, const btVector3& poin
   return nullptr;
 }
 
+// A triangle pair within the contact margin: a contact at its closest points, separated by
+// their distance (Bullet's solver treats it as speculative: it stops only the approach that
+// would close the gap within the step). The normal is the direction between the closest
+// points, as Bullet's convex algorithms take it. Returns whether a point was written.
+bool addNearContact(const PosedPair& pair, const Vec3 a[3], const Vec3 b[3],
+                    btManifoldResult& out) {
+  const TriangleDistance d = triangleDistance(a[0], a[1], a[2], b[0], b[1], b[2]);
+  if (!(d.distance > 0.0) || !std::isfinite(d.distance)) return false;
+  const Vec3 normal = (d.pointOnB - d.pointOnA) / d.distance;  // from A towards B
+  // As for crossing triangles: A's surface must face B, and B's must face back.
+  if (facesAway(a, pair.facingA, -normal) || facesAway(b, pair.facingB, normal)) return false;
+  out.addContactPoint(toBt(-normal), toBt(d.pointOnB), static_cast<btScalar>(d.distance));
+  return true;
+}
+
 }  // namespace
 
 Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCentre0,
@@ -131,6 +147,10 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
     Vec3 a[3], b[3];
     worldTriangle(*pair.a, pair.poseA, w.triangleA, a);
     worldTriangle(*pair.b, pair.poseB, w.triangleB, b);
+    if (w.distance > 0.0f) {
+      written += addNearContact(pair, a, b, out) ? 1 : 0;
+      continue;
+    }
     const TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
     if (!c.valid) continue;
     // B is pushed along +normal: A's surface must face it, B's must face back.
