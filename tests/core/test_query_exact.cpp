@@ -57,9 +57,7 @@ TEST(ExactMode, CollectsEveryIntersectingTrianglePair) {
   const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 16, 8);
   AdbTree tree(mesh);
   QueryScratch scratch;
-  QuerySettings s = test::exactSettings();
-  s.stopAtFirstHit = false;
-  s.maxWitnesses = 100000;
+  QuerySettings s = test::collectEverySettings();
   std::mt19937_64 rng(test::kSeed);
   const PosePair p = benchmarkPoses(mesh.bounds(), 0.5, rng);
   const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);

@@ -38,6 +38,14 @@ inline QuerySettings exactSettings() {
   return s;
 }
 
+/// Exact mode collecting every hit as a witness (no first-hit stop, no cap in practice).
+inline QuerySettings collectEverySettings() {
+  QuerySettings s = exactSettings();
+  s.stopAtFirstHit = false;
+  s.maxWitnesses = 100000;
+  return s;
+}
+
 inline QuerySettings adbSettings(double pMin = 0.99, int kMin = 10) {
   QuerySettings s;
   s.mode = QueryMode::Adb;

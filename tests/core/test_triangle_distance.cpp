@@ -123,9 +123,7 @@ TEST(ContactMargin, FindsExactlyThePairsWithinTheMargin) {
   const TriangleMesh mesh = gen::makeTorus(1.0, 0.35, 16, 8);
   AdbTree tree(mesh);
   QueryScratch scratch;
-  QuerySettings s = test::exactSettings();
-  s.stopAtFirstHit = false;
-  s.maxWitnesses = 100000;
+  QuerySettings s = test::collectEverySettings();
   s.contactMargin = 0.05;
   std::mt19937_64 rng(test::kSeed);
   int near = 0, withNearOnly = 0;
@@ -160,9 +158,7 @@ TEST(ContactMargin, ZeroMarginIsThePlainIntersectionQuery) {
   const TriangleMesh mesh = gen::makeGear(12, 1.0, 0.8, 0.3, 0.3, 4);
   AdbTree tree(mesh);
   QueryScratch scratch;
-  QuerySettings s = test::exactSettings();
-  s.stopAtFirstHit = false;
-  s.maxWitnesses = 100000;
+  QuerySettings s = test::collectEverySettings();
   std::mt19937_64 rng(test::kSeed);
   for (int i = 0; i < 6; ++i) {
     const PosePair p = benchmarkPoses(mesh.bounds(), 0.6 + 0.3 * i, rng);
