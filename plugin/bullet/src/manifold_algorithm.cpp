@@ -56,7 +56,7 @@ std::uint64_t ManifoldAlgorithm::collideWithReach(const btCollisionObjectWrapper
   btPersistentManifold* speculative = speculativeManifold();
   if (!speculative) return collideNow(body0, body1, info, result);
   result->setPersistentManifold(m_manifold);  // as collideNow would leave it
-  detail::SpeculativeResult reach(*result, speculative, m_threshold + m_speculative);
+  detail::SpeculativeResult reach(*result, speculative, contactReach());
   return collideNow(body0, body1, info, &reach);
 }
 
@@ -151,7 +151,7 @@ void ManifoldAlgorithm::setReach(const btCollisionObjectWrapper* body0,
   if (!m_speculativeManifold) return;
   // Last step's speculative points said where the bodies might meet then: start afresh.
   m_speculativeManifold->clearManifold();
-  m_speculativeManifold->setContactBreakingThreshold(m_threshold + m_speculative);
+  m_speculativeManifold->setContactBreakingThreshold(contactReach());
 }
 
 void ManifoldAlgorithm::ensureManifold(const btCollisionObjectWrapper* body0,

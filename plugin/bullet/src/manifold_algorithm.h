@@ -3,8 +3,8 @@
 //
 // Shared: which body is the mesh, one persistent manifold made on first use and released
 // with the algorithm, the reach of its contacts (speculative for fast bodies that ask for
-// continuous collision detection), the pose check, and the hand-over to the step's scheduler. Under adb::Dispatcher every pair (a compound's children included)
-// is only noted while Bullet dispatches; the scheduler then runs them all within the step's
+// continuous collision detection), the pose check, and the hand-over to the step's
+// scheduler. Under adb::Dispatcher every pair (a compound's children included) is only noted while Bullet dispatches; the scheduler then runs them all within the step's
 // one budget (frame_scheduler.h). Elsewhere (a plain btCollisionDispatcher, contactTest) a
 // pair is collided at once.
 #pragma once
@@ -80,6 +80,9 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// would carry the bodies past them. They go to a second manifold of the pair
   /// (speculative_result.h), rebuilt every step.
   btScalar speculativeReach() const { return m_speculative; }
+  /// How far apart features make contacts this step: breakingThreshold() plus
+  /// speculativeReach().
+  btScalar contactReach() const { return m_threshold + m_speculative; }
   /// Refreshes the pair's manifold for the bodies' new poses (Bullet's refreshContactPoints)
   /// without colliding: what a pair the budget skipped keeps from its last step.
   void keepLastContacts(const btCollisionObjectWrapper* body0,

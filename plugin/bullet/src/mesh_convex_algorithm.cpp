@@ -201,10 +201,12 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
   const AdbTree& tree = mesh->tree();
   const btTransform& meshPose = meshWrap->getWorldTransform();
 
-  const double threshold = btMax(manifold->getContactBreakingThreshold(),
-                                 result->m_closestPointDistanceThreshold);
+  // Candidates up to the threshold (and this step's speculative reach), from triangles
+  // within that plus the mesh's margin.
+  const double threshold =
+      btMax(breakingThreshold(), result->m_closestPointDistanceThreshold) + speculativeReach();
   const double meshMargin = mesh->getMargin();
-  const double reach = threshold + meshMargin + speculativeReach();
+  const double reach = threshold + meshMargin;
   const Pose convexInMesh = toPose(meshPose.inverseTimes(convexWrap->getWorldTransform()));
   if (!convexInMesh.rotation.allFinite() || !convexInMesh.translation.allFinite()) return 0;
   const LocalConvex local = localConvex(*convex, convexInMesh, tree.origin(), reach);
@@ -239,8 +241,7 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
         boxTriangleContacts(local.box, a, b, c, reach, found);
         break;
     }
-    addCandidates(found, meshPose, tree.origin(), meshMargin, threshold + speculativeReach(),
-                  meshIsBody0,
+    addCandidates(found, meshPose, tree.origin(), meshMargin, threshold, meshIsBody0,
                   static_cast<int>(tree.meshTriangle(t)), selection);
     double deepest = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < found.count; ++i) deepest = std::max(deepest, -found.points[i].separation);

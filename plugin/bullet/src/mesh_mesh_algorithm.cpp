@@ -36,7 +36,8 @@ constexpr int kRegionDepth = 8;
 // in the step (speculativeReach, QuerySettings::contactMargin). A margin at Bullet's breaking
 // threshold for every pair was tried: on the gallery pile it cost 4.5x the time (the node
 // pairs within 0.011 of each other, not only the crossing ones) and the pile no longer came
-// to rest (22 of 30 bodies at 1,200 steps, against all 30 from step 600 without it).
+// to rest (22 of 30 bodies at 1,200 steps, against all 30 from step 600 without it;
+// docs/bullet-budget.md has the commands).
 QuerySettings forContacts(QuerySettings s, double margin) {
   s.stopAtFirstHit = false;
   s.maxWitnesses = kMaxContactPairs;
@@ -108,8 +109,7 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
 
 double MeshMeshAlgorithm::contactMargin() const {
   // Near pairs within Bullet's threshold too, once there is a gap to speculate over.
-  return speculativeReach() > 0 ? static_cast<double>(breakingThreshold() + speculativeReach())
-                                : 0.0;
+  return speculativeReach() > 0 ? static_cast<double>(contactReach()) : 0.0;
 }
 
 bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform0,
@@ -131,9 +131,8 @@ bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform
 ContactCount MeshMeshAlgorithm::writeContacts(const detail::DeferredPair& pair,
                                               const FrameSettings& settings) {
   const detail::PairWrappers wrappers(pair);
-  const btManifoldResult plain(&wrappers.body0, &wrappers.body1);
-  detail::SpeculativeResult result(plain, speculativeManifold(),
-                                   breakingThreshold() + speculativeReach());
+  detail::SpeculativeResult result(&wrappers.body0, &wrappers.body1, speculativeManifold(),
+                                   contactReach());
   return addContacts(&wrappers.body0, &wrappers.body1, result, settings);
 }
 

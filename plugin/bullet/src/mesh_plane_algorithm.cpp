@@ -31,8 +31,7 @@ std::uint64_t MeshPlaneAlgorithm::collideNow(const btCollisionObjectWrapper* bod
   const AdbTree& tree = mesh->tree();
   const Vec3 n(nLocalBt.x(), nLocalBt.y(), nLocalBt.z());
   const double c = n.dot(tree.origin()) + nWorld.dot(meshPose.getOrigin()) - dWorld;
-  const double reach =
-      manifold->getContactBreakingThreshold() + mesh->getMargin() + speculativeReach();
+  const double reach = contactReach() + mesh->getMargin();
 
   // Bullet's normal on body 1 points towards body 0. Every vertex within reach is a
   // candidate; the selection keeps the deepest and the widest support (contact_selection.h).

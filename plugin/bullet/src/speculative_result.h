@@ -21,6 +21,10 @@ class SpeculativeResult : public btManifoldResult {
   SpeculativeResult(const btManifoldResult& base, btPersistentManifold* speculative,
                     btScalar reach)
       : btManifoldResult(base), m_speculative(speculative), m_reach(reach) {}
+  /// A new result for the two bodies, as btManifoldResult(body0, body1).
+  SpeculativeResult(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                    btPersistentManifold* speculative, btScalar reach)
+      : btManifoldResult(body0, body1), m_speculative(speculative), m_reach(reach) {}
 
   void addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld,
                        btScalar depth) override;
