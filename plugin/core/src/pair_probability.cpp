@@ -187,6 +187,23 @@ double ChildPairs::overlapDepth(int i, int j) {
   return std::max(0.0, std::min(inA.minCoeff(), inB.minCoeff()));
 }
 
+double ChildPairs::separation(int i, int j) {
+  mapA(i);
+  reachA(i);
+  reachB(j);
+  const PosedNode& pa = m_a[i];
+  const PosedNode& pb = m_b[j];
+  const double inA = ((pb.cOther - pa.c).cwiseAbs() - pa.h - pb.hOther).maxCoeff();
+  const double inB = ((pa.cOther - pb.c).cwiseAbs() - pb.h - pa.hOther).maxCoeff();
+  const auto slab = [](const PosedNode& self, const PosedNode& other) {
+    const NodeDistribution& d = *self.d;
+    const double centre = d.normal[0] * other.cOther[0] + d.normal[1] * other.cOther[1] +
+                          d.normal[2] * other.cOther[2];
+    return std::abs(centre - d.offset) - d.halfWidth - self.slabReach.dot(other.h);
+  };
+  return std::max(std::max(inA, inB), std::max(slab(pa, pb), slab(pb, pa))) - m_frame.slack;
+}
+
 bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
                   std::uint32_t b, const RelativeFrame& frame) {
   return ChildPairs(*ta.tree, &a, 1, *tb.tree, &b, 1, frame).overlap(0, 0);

@@ -66,6 +66,13 @@ class ChildPairs {
   /// overlap(), and for overlapping nodes how deeply their boxes overlap (>= 0: the smallest
   /// overlap along the six face axes); negative when they are apart.
   double overlapDepth(int i, int j);
+  /// Every test of overlap() measured instead of decided: the largest of the signed
+  /// distances by which the face axes and slabs separate the two nodes (beyond the slack).
+  /// > 0: apart by at least that much; <= 0: overlapping, each test short of separating by
+  /// at least its magnitude. Under a rigid motion that moves no point of either node by more
+  /// than d (each in the other's frame), the value changes by at most d: the certificate a
+  /// traversal front keeps across steps.
+  double separation(int i, int j);
   /// The posed nodes, complete once overlap(i, j) returned true.
   const PosedNode& a(int i) const { return m_a[i]; }
   const PosedNode& b(int j) const { return m_b[j]; }

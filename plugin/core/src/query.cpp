@@ -43,6 +43,7 @@
 #include "adb/core/triangle_test.h"
 #include "format_number.h"
 #include "pair_probability.h"
+#include "traversal_front.h"
 
 namespace adb {
 namespace {
@@ -156,6 +157,45 @@ struct Traversal::Impl {
   bool exactHit = false;
   bool witnessesFull = false;  // stopWhenWitnessesFull: the last hit filled the witnesses
 
+  // --- the front (QuerySettings::keepFront), kept across reset() -----------------------------
+  // `front` is the last walk's record (traversal_front.h), `nextFront` the one being written.
+  std::vector<detail::FrontEntry> front, nextFront;
+  detail::FrontReference reference;
+  const AdbTree* frontTreeA = nullptr;
+  const AdbTree* frontTreeB = nullptr;
+  double frontMargin = 0.0;
+  double radiusA = 0.0, radiusB = 0.0;
+  double motion = 0.0;      // this query's bound on how far the trees moved since `reference`
+  // Moving the reference pose uses up that much of every certificate. Instead of rewriting
+  // each, it is summed here: an entry holds |certificate| - consumed (a new one is stored
+  // with consumed added), and only when the sum grows past the trees' size are the entries
+  // rewritten. `reach` = motion + consumed: what a certificate must exceed to hold.
+  double consumed = 0.0;
+  double reach = 0.0;
+  bool walking = false;     // this query walks a front instead of descending from the roots
+  bool walkOpen = false;    // a walk began and its record is not yet in `front`
+  bool recording = true;    // nextFront is under kMaxFrontEntries
+  std::uint64_t fromScratch = 0;  // node pairs a descent from the roots evaluates
+  static constexpr std::size_t kNotRecorded = ~std::size_t{0};
+  struct WalkFrame {
+    std::size_t parentAt = kNotRecorded;  // the parent's entry in nextFront
+    std::uint32_t region = kNoRegion;  // the parent's contact region
+    bool fromOld = false;           // children read from `front`, else `kids`
+    std::size_t oldCursor = 0;      // fromOld: the next child in `front`
+    std::size_t oldEnd = 0;         // fromOld: one past the parent's last entry in `front`
+    std::uint8_t kidCount = 0, kidNext = 0;
+    detail::FrontEntry kids[4];     // a fresh expansion's children, in processing order
+    bool kidOverlaps[4] = {false, false, false, false};
+    // The child taken and waiting for its leaf test or its expansion, with what lay below it
+    // in `front` ([pendingBegin, pendingEnd), empty for a fresh one).
+    bool hasPending = false;
+    detail::FrontEntry pending{};
+    std::size_t pendingAt = kNotRecorded;  // its entry in nextFront
+    std::uint32_t pendingRegion = kNoRegion;
+    std::size_t pendingBegin = 0, pendingEnd = 0;
+  };
+  std::vector<WalkFrame> frames;
+
   // --- the current step ----------------------------------------------------------------------
   StepWork work;
   StepBudget budget;
@@ -171,6 +211,7 @@ struct Traversal::Impl {
     validate(s);
     validatePose(poseA, "A");
     validatePose(poseB, "B");
+    if (walkOpen) closeWalk();  // a walk a budget left unfinished: keep what it recorded
     a = {&ta, ta.maxDepth()};
     b = {&tb, tb.maxDepth()};
     frame = detail::RelativeFrame::between(ta, poseA, tb, poseB);
@@ -186,6 +227,41 @@ struct Traversal::Impl {
     prunedMass = prunedExpected = 0.0;
     budgeted = deepestFirst = false;
     work = StepWork{};
+    walking = s.keepFront && s.mode == QueryMode::Exact &&
+              ta.maxDepth() <= detail::kMaxFrontDepth && tb.maxDepth() <= detail::kMaxFrontDepth;
+    if (walking) startFront(ta, tb);
+  }
+
+  // Keeps the front where it is the same two trees and margin, and measures how far they
+  // moved since its reference pose; past kRebaseFraction of their size the certificates are
+  // moved to the current pose (resting contact jitters far less: a fixed reference lets its
+  // certificates last, instead of losing each step's jitter).
+  void startFront(const AdbTree& ta, const AdbTree& tb) {
+    constexpr double kRebaseFraction = 1e-3;
+    if (frontTreeA != &ta || frontTreeB != &tb || frontMargin != settings.contactMargin) {
+      front.clear();
+      consumed = 0.0;
+      frontTreeA = &ta;
+      frontTreeB = &tb;
+      frontMargin = settings.contactMargin;
+      radiusA = detail::treeRadius(ta);
+      radiusB = detail::treeRadius(tb);
+      reference = detail::FrontReference::of(frame);
+    }
+    motion = reference.motion(frame, radiusA, radiusB);
+    if (!(motion <= kRebaseFraction * (radiusA + radiusB))) {
+      consumed += motion;
+      if (!std::isfinite(consumed)) {
+        front.clear();
+        consumed = 0.0;
+      } else if (consumed > radiusA + radiusB) {  // float certificates would lose precision
+        detail::settleConsumed(front, consumed);
+        consumed = 0.0;
+      }
+      reference = detail::FrontReference::of(frame);
+      motion = frame.slack;
+    }
+    reach = motion + consumed;
   }
 
   const QueryResult& step(const StepBudget& stepBudget) {
@@ -202,7 +278,9 @@ struct Traversal::Impl {
     workSinceClock = 0;
     firstCheck = true;
     progressed = false;
-    if (settings.mode == QueryMode::Exact) {
+    if (walking) {
+      runFront();
+    } else if (settings.mode == QueryMode::Exact) {
       runExact();
     } else {
       runAdb();
@@ -211,6 +289,7 @@ struct Traversal::Impl {
     result.nodePairs += work.nodePairs;
     result.triangleTests += work.triangleTests;
     result.seconds += work.seconds;
+    if (!walking) result.fromScratchNodePairs = result.nodePairs;
     // A "no" shows no witnesses, but keeps them: a later step may still say "collision".
     result.witnessCount = result.collides ? static_cast<std::uint32_t>(witnesses.size()) : 0;
     finished = !isBudgetStop(result.stop);
@@ -222,14 +301,15 @@ struct Traversal::Impl {
   // The first expansion of a step is free unless the budget is zero: every step with a
   // non-zero budget makes progress, so a caller looping until done() cannot livelock; a
   // first step's roots test is its progress (nodePairs <= max(1, budget) for collide()).
-  bool budgetLeft() {
+  // `cost`: the node pairs the next piece of work evaluates at most.
+  bool budgetLeft(std::uint64_t cost = kNodePairsPerExpansion) {
     const bool free =
         !progressed && budget.nodePairs > 0 && budget.micros > 0.0 && work.nodePairs == 0;
     if (free) {
       progressed = true;
       return true;
     }
-    if (work.nodePairs + kNodePairsPerExpansion > budget.nodePairs) {
+    if (work.nodePairs + cost > budget.nodePairs) {
       result.stop = StopReason::WorkBudget;
       return false;
     }
@@ -466,6 +546,293 @@ struct Traversal::Impl {
     }
   }
 
+  // --- exact mode walking its front (QuerySettings::keepFront) ------------------------------
+  // The depth-first descent of runExact, with each pair's box test answered by its
+  // certificate where the motion has not used it up (traversal_front.h). A pair that was
+  // expanded last time is walked through what lay below it; one that now overlaps and was
+  // not is expanded as runExact would; what lay below a pair now apart is dropped. Pairs are
+  // processed in the recorded order, and a fresh expansion orders its children as runExact
+  // does: the hits, and so the witnesses, come in runExact's order.
+  void runFront() {
+    heap.clear();
+    if (!started) beginWalk();
+    while (!frames.empty()) {
+      if (frames.back().hasPending) {
+        if (!processPending()) return;
+        continue;
+      }
+      WalkFrame& f = frames.back();
+      detail::FrontEntry c{};
+      bool overlaps = false;
+      std::size_t begin = 0, end = 0;
+      if (f.fromOld) {
+        if (f.oldCursor >= f.oldEnd) {
+          popFrame();
+          continue;
+        }
+        c = front[f.oldCursor];
+        begin = f.oldCursor + 1;
+        end = begin + c.below;
+        if (c.apart(reach)) {
+          overlaps = false;
+        } else if (c.overlapping(reach)) {
+          overlaps = true;
+        } else {
+          if (!budgetLeft(1)) {
+            cutWalk();
+            return;
+          }
+          overlaps = testPair(c);
+        }
+        f.oldCursor = end;
+      } else {
+        if (f.kidNext >= f.kidCount) {
+          popFrame();
+          continue;
+        }
+        overlaps = f.kidOverlaps[f.kidNext];
+        c = f.kids[f.kidNext++];
+      }
+      ++fromScratch;
+      if (!overlaps) {  // apart: what lay below it is dropped
+        c.below = 0;
+        record(c);
+        continue;
+      }
+      const std::size_t at = record(c);
+      const std::uint32_t region = childRegion(f.region, c.depthA, c.depthB);
+      if (regionFull(region)) {  // skipped as runExact skips it; what lay below is kept
+        ++work.pairsPopped;
+        copyRecorded(begin, end);
+        continue;
+      }
+      f.hasPending = true;
+      f.pending = c;
+      f.pendingAt = at;
+      f.pendingRegion = region;
+      f.pendingBegin = begin;
+      f.pendingEnd = end;
+    }
+    closeWalk();
+    finish(exactHit, 1.0, StopReason::Completed);
+  }
+
+  // The roots are always tested (as runExact tests them), unless their certificate holds.
+  void beginWalk() {
+    started = walkOpen = recording = true;
+    nextFront.clear();
+    frames.clear();
+    frames.reserve(2 * static_cast<std::size_t>(a.maxDepth + b.maxDepth) + 4);
+    fromScratch = 1;
+    detail::FrontEntry root{0, 0, 0.0f, 0, 0, 0};
+    if (!front.empty()) root = front.front();
+    bool overlaps = root.overlapping(reach);
+    if (!overlaps && !root.apart(reach)) overlaps = testPair(root);
+    if (!overlaps) root.below = 0;
+    const std::size_t at = record(root);
+    if (!overlaps) return;  // no frames: the walk ends at once
+    WalkFrame base;  // the roots' parent, holding them as its pending child
+    base.hasPending = true;
+    base.pending = root;
+    base.pendingAt = at;
+    base.pendingRegion = childRegion(kNoRegion, 0, 0);
+    base.pendingBegin = std::min<std::size_t>(1, front.size());
+    base.pendingEnd = front.empty() ? 0 : 1 + std::size_t{root.below};
+    frames.push_back(base);
+  }
+
+  // The child waiting on the top frame: its leaf test, or its expansion (walked from what lay
+  // below it, or fresh). Returns false when the walk stops here (a budget, or the answer).
+  bool processPending() {
+    WalkFrame& f = frames.back();
+    const detail::FrontEntry c = f.pending;
+    const std::uint32_t region = f.pendingRegion;
+    if (a.tree->nodes()[c.a].isLeaf() && b.tree->nodes()[c.b].isLeaf()) {
+      if (!budgetLeft()) {
+        cutWalk();
+        return false;
+      }
+      f.hasPending = false;
+      ++work.pairsPopped;
+      if (testLeaves(c.a, c.b, region)) {
+        exactHit = true;
+        if (hitEndsQuery()) {
+          closeWalk();
+          finish(true, 1.0, hitStop());
+          return false;
+        }
+      }
+      return true;
+    }
+    WalkFrame next;
+    next.parentAt = f.pendingAt;
+    next.region = region;
+    if (f.pendingBegin < f.pendingEnd) {
+      next.fromOld = true;
+      next.oldCursor = f.pendingBegin;
+      next.oldEnd = f.pendingEnd;
+    } else {
+      if (!budgetLeft()) {
+        cutWalk();
+        return false;
+      }
+      expandFresh(c, next);
+    }
+    f.hasPending = false;
+    ++work.pairsPopped;
+    frames.push_back(next);  // `f` is not used after this: the push may move it
+    return true;
+  }
+
+  // runExact's expansion of a pair with nothing recorded below it: every child pair tested
+  // and certified, processed in the order runExact pops them.
+  void expandFresh(const detail::FrontEntry& c, WalkFrame& out) {
+    const Expansion x = expand(Entry{kUnestimated, 1.0f, c.a, c.b, kNoRegion, c.depthA, c.depthB,
+                                     0.0f});
+    detail::ChildPairs pairs = pairsOf(x);
+    detail::FrontEntry kids[4];
+    bool overlaps[4];
+    float key[4];
+    int count = 0;
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        ++work.nodePairs;
+        const double depth = deepestFirst ? pairs.overlapDepth(i, j) : 0.0;
+        const bool ov = deepestFirst ? depth >= 0.0 : pairs.overlap(i, j);
+        const detail::FrontEntry kid{x.ca[i], x.cb[j], certify(ov, pairs.separation(i, j)),
+                                     static_cast<std::uint8_t>(x.depthA),
+                                     static_cast<std::uint8_t>(x.depthB), 0};
+        // runExact's stable insertion by depth, pushed in that order and popped last first.
+        // In the trees' order the pairs apart are placed as if they overlapped: the recorded
+        // order must not depend on which overlap, since a later walk follows it when others
+        // do (deepest first depends on the pose anyway: it only serves budgeted queries).
+        int k = count++;
+        for (; k > 0 && key[k - 1] > static_cast<float>(depth); --k) {
+          kids[k] = kids[k - 1];
+          overlaps[k] = overlaps[k - 1];
+          key[k] = key[k - 1];
+        }
+        kids[k] = kid;
+        overlaps[k] = ov;
+        key[k] = static_cast<float>(depth);
+      }
+    }
+    out.kidCount = static_cast<std::uint8_t>(count);
+    for (int k = 0; k < count; ++k) {
+      out.kids[k] = kids[count - 1 - k];
+      out.kidOverlaps[k] = overlaps[count - 1 - k];
+    }
+  }
+
+  // The certificate of a pair just tested, counted from the front's reference pose: its
+  // answer holds for any pose within |measured| - motion of the reference (stored with
+  // `consumed` added). The answer is overlap()'s (runExact's); a measure that disagrees
+  // within rounding certifies nothing.
+  float certify(bool overlaps, double separation) const {
+    const double held = overlaps ? -separation - motion : separation - motion;
+    if (!(held > 0.0)) return 0.0f;
+    return detail::certificateOf(overlaps ? -(held + consumed) : held + consumed);
+  }
+
+  bool testPair(detail::FrontEntry& c) {
+    ++work.nodePairs;
+    detail::ChildPairs pair(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame);
+    const bool overlaps = pair.overlap(0, 0);
+    c.certificate = certify(overlaps, pair.separation(0, 0));
+    return overlaps;
+  }
+
+  // Appends an entry to the record; returns where it went.
+  std::size_t record(const detail::FrontEntry& e) {
+    if (!recording) return kNotRecorded;
+    if (nextFront.size() + 1 >= detail::kMaxFrontEntries) {
+      recording = false;  // too big to be worth keeping: the next query starts afresh
+      return kNotRecorded;
+    }
+    nextFront.push_back(e);
+    return nextFront.size() - 1;
+  }
+
+  // A frame whose children are all recorded: its parent's entry learns its subtree's size.
+  void popFrame() {
+    const std::size_t at = frames.back().parentAt;
+    if (recording && at != kNotRecorded) {
+      nextFront[at].below = static_cast<std::uint16_t>(nextFront.size() - at - 1);
+    }
+    frames.pop_back();
+  }
+
+  // Entries kept below a pair this walk did not descend (a full region, a stopped walk):
+  // still true certificates, for a later walk that does.
+  void copyRecorded(std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) record(front[i]);
+  }
+
+  // Ends the walk: what it did not reach is recorded as it was (each frame's pending child's
+  // entries, then its remaining children with theirs, innermost frame first: the recorded
+  // order), and the record becomes the front. The remaining children of frames the descent
+  // had expanded count towards the from-roots cost (runExact tests them when it expands
+  // their parent); nothing below them does.
+  void closeWalk() {
+    while (!frames.empty()) {
+      WalkFrame& f = frames.back();
+      if (f.hasPending) {
+        // Recorded last, with its old size: what lay below it follows as it was.
+        copyRecorded(f.pendingBegin, f.pendingEnd);
+        f.hasPending = false;
+      }
+      if (f.fromOld) {
+        copyRecorded(f.oldCursor, f.oldEnd);
+        for (std::size_t i = f.oldCursor; i < f.oldEnd; i += 1 + std::size_t{front[i].below}) {
+          ++fromScratch;
+        }
+      } else {
+        for (; f.kidNext < f.kidCount; ++f.kidNext) {
+          record(f.kids[f.kidNext]);
+          ++fromScratch;
+        }
+      }
+      popFrame();
+    }
+    if (recording) {
+      front.swap(nextFront);
+    } else {
+      front.clear();
+    }
+    nextFront.clear();
+    walkOpen = false;
+    result.fromScratchNodePairs = fromScratch;
+  }
+
+  // A budget stopped the walk: its frames stay for the next step() of this query. The pairs
+  // not proven apart that it has not reached are its open pairs, estimated as runExact's
+  // stack is, and the front's entries it has not reached estimate the rest of the cost.
+  void cutWalk() {
+    heap.clear();
+    std::size_t unreached = 0;
+    for (std::size_t k = frames.size(); k-- > 0;) {
+      const WalkFrame& f = frames[k];
+      const std::uint32_t region = f.region;
+      const auto open = [&](const detail::FrontEntry& e, std::uint32_t r) {
+        heap.push_back(Entry{kUnestimated, 1.0f, e.a, e.b, r, e.depthA, e.depthB, 0.0f});
+      };
+      if (f.hasPending) open(f.pending, f.pendingRegion);
+      if (f.fromOld) {
+        if (unreached == 0) unreached = front.size() - f.oldCursor;
+        for (std::size_t i = f.oldCursor; i < f.oldEnd; i += 1 + std::size_t{front[i].below}) {
+          if (!front[i].apart(reach)) open(front[i], region);
+        }
+      } else {
+        for (int i = f.kidNext; i < f.kidCount; ++i) {
+          if (f.kidOverlaps[i]) open(f.kids[i], region);
+        }
+      }
+    }
+    result.fromScratchNodePairs = fromScratch + unreached;
+    estimateFrontier();
+    finish(exactHit, exactHit ? 1.0 : 1.0 - collisionProbability(evidence()), result.stop);
+  }
+
   // --- ADB mode: the paper's priority traversal ----------------------------------------
   void push(const detail::PairEstimate& est, std::uint32_t ia, std::uint32_t ib,
             std::uint32_t region, int da, int db) {
@@ -664,8 +1031,11 @@ const std::vector<Witness>& Traversal::witnesses() const {
 Evidence Traversal::evidence() const { return m_impl->evidence(); }
 
 std::size_t Traversal::capacityBytes() const {
-  return m_impl->heap.capacity() * sizeof(Entry) + m_impl->witnesses.capacity() * sizeof(Witness) +
-         m_impl->regionHits.capacity() * sizeof(std::uint32_t);
+  const Impl& m = *m_impl;
+  return m.heap.capacity() * sizeof(Entry) + m.witnesses.capacity() * sizeof(Witness) +
+         m.regionHits.capacity() * sizeof(std::uint32_t) +
+         (m.front.capacity() + m.nextFront.capacity()) * sizeof(detail::FrontEntry) +
+         m.frames.capacity() * sizeof(Impl::WalkFrame);
 }
 
 bool isBudgetStop(StopReason r) {
@@ -710,7 +1080,9 @@ void validate(const QuerySettings& s) {
 QueryResult collide(const AdbTree& a, const Pose& poseA, const AdbTree& b, const Pose& poseB,
                     const QuerySettings& settings, QueryScratch& scratch) {
   Traversal& t = scratch.m_traversal;
-  t.reset(a, poseA, b, poseB, settings);
+  QuerySettings once = settings;
+  once.keepFront = false;  // a scratch serves any pair of trees: nothing to carry
+  t.reset(a, poseA, b, poseB, once);
   return t.step(StepBudget{settings.budgetNodePairs, settings.budgetMicros});
 }
 

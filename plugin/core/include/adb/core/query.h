@@ -106,6 +106,16 @@ struct QuerySettings {
   /// witness list then keeps the closest pairs (crossing ones count as 0 apart): a closer
   /// hit replaces the farthest witness.
   double contactMargin = 0.0;
+  /// Exact mode, a Traversal reset step after step for the same two trees (a physics pair):
+  /// keep the node pairs the last query evaluated, each with how far its boxes were apart or
+  /// how deeply they overlapped, and walk them again instead of descending from the roots
+  /// (traversal_front.h). Only pairs whose margin the bodies' motion since has used up are
+  /// tested again, so a resting pair pays for the pairs that changed; what the query visits
+  /// and finds is what a descent from the roots would, in the same order (the same
+  /// witnesses), and QueryResult::fromScratchNodePairs says what that descent would have
+  /// cost. Memory: 32 bytes per evaluated node pair, at most 2 MiB per Traversal. Ignored
+  /// by collide() (a new scratch each time gains nothing) and in ADB mode.
+  bool keepFront = false;
 };
 
 /// Evidence for "collision" handed to contact generation: a pair of nodes accepted on
@@ -135,6 +145,10 @@ struct QueryResult {
   double confidence = 0.0;
   StopReason stop = StopReason::Completed;
   std::uint64_t nodePairs = 0;       ///< node pairs evaluated (box test, probability)
+  /// Node pairs a query from the roots would have evaluated for the same answer: nodePairs
+  /// unless QuerySettings::keepFront let the query re-use its last front. Where a budget cut
+  /// the query, what was evaluated so far plus what the last front held beyond it.
+  std::uint64_t fromScratchNodePairs = 0;
   std::uint64_t triangleTests = 0;   ///< triangle-triangle tests run
   std::uint32_t collisionPairs = 0;  ///< pairs with p > pMin (the paper's k)
   std::uint32_t witnessCount = 0;    ///< witnesses in QueryScratch::witnesses(); 0 for "no"
