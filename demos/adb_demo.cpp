@@ -27,11 +27,19 @@ struct Options {
   adb::demo::PileRunOptions pile;
   std::vector<std::string> meshes;
   std::string floor = "mesh";
+  std::string fronts;
   double budgetMicros = 0;
   std::uint64_t budgetPairs = 0;
   double pMin = 0, pAccept = 0;
   int kMin = 0;
 };
+
+// --fronts' values (checked by the parser) as FrameSettings::Fronts.
+adb::FrameSettings::Fronts frontsOf(const std::string& name) {
+  using Fronts = adb::FrameSettings::Fronts;
+  return name == "always" ? Fronts::Always : name == "never" ? Fronts::Never
+                                                             : Fronts::WithNodePairBudget;
+}
 
 void addOptions(CLI::App& app, Options& o) {
   app.add_option("--scene", o.scene.scene, "a scene file (docs/scenes.md); without it, the pile")
@@ -64,6 +72,10 @@ void addOptions(CLI::App& app, Options& o) {
                  "unresolved node pairs at or above it become plausible contacts (0.9)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--no-soften", o.scene.noSoften, "plausible contacts push as hard as exact ones");
+  app.add_option("--fronts", o.fronts,
+                 "mesh-mesh pairs keep the node pairs they evaluated and re-test what moved: "
+                 "with a node-pair budget (default), always, or never")
+      ->check(CLI::IsMember({"node_pair_budget", "always", "never"}));
 
   app.add_flag("--render", o.scene.render, "scene: write DIR/frames/NNNNN.png and DIR/movie.mp4 "
                                            "(with ffmpeg); needs --out");
@@ -118,6 +130,7 @@ int runPile(const CLI::App& app, Options& o) {
   if (app.count("--k-min")) f.kMin = o.kMin;
   if (app.count("--p-accept")) f.pAccept = o.pAccept;
   f.softenPlausible = !o.scene.noSoften;
+  if (app.count("--fronts")) f.fronts = frontsOf(o.fronts);
   try {
     for (const std::string& file : o.meshes) p.settings.meshes.push_back(adb::io::loadMesh(file));
   } catch (const std::exception& e) {
@@ -152,6 +165,7 @@ int runScene(const CLI::App& app, Options& o) {
   if (app.count("--p-min")) s.pMin = o.pMin;
   if (app.count("--k-min")) s.kMin = o.kMin;
   if (app.count("--p-accept")) s.pAccept = o.pAccept;
+  if (app.count("--fronts")) s.fronts = frontsOf(o.fronts);
   return adb::demo::runScene(s);
 }
 

@@ -30,7 +30,7 @@ void writeCsvHeader(std::ofstream& csv) {
   csv << "step,seconds,contacts,max_penetration,kinetic,energy,at_rest,lowest_y,"
          "frame_us,contact_us,pairs,exact_pairs,quality_pairs,cut_pairs,node_pairs,exact_contacts,"
          "plausible_contacts,mean_confidence,worst_confidence,body_penetration,bin_penetration,"
-         "floor_penetration,floor_penetration_relative,lost,probed_depth,probed_relative,probed_mean,needed_node_pairs,mean_completeness,worst_completeness,other_node_pairs\n";
+         "floor_penetration,floor_penetration_relative,lost,probed_depth,probed_relative,probed_mean,needed_node_pairs,mean_completeness,worst_completeness,other_node_pairs,from_scratch_node_pairs\n";
 }
 
 void writeCsvRow(std::ofstream& csv, int step, const StepStats& s) {
@@ -48,7 +48,7 @@ void writeCsvRow(std::ofstream& csv, int step, const StepStats& s) {
     csv << ",,";
   }
   csv << ',' << f.neededNodePairs << ',' << f.meanCompleteness << ',' << f.worstCompleteness
-      << ',' << f.otherNodePairs << '\n';
+      << ',' << f.otherNodePairs << ',' << f.fromScratchNodePairs << '\n';
 }
 
 struct Totals {

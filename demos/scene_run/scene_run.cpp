@@ -42,6 +42,7 @@ void applyOverrides(const SceneRunOptions& o, Scene& s) {
   if (o.kMin) s.world.kMin = *o.kMin;
   if (o.pAccept) s.world.pAccept = *o.pAccept;
   if (o.noSoften) s.effects.softContacts = false;
+  if (o.fronts) s.world.fronts = *o.fronts;
 }
 
 std::string budgetText(const scene::BudgetSpec& b) {

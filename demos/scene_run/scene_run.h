@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "adb/bullet/frame_budget.h"
+
 namespace adb::demo {
 
 struct SceneRunOptions {
@@ -31,6 +33,7 @@ struct SceneRunOptions {
   std::optional<double> pMin, pAccept;
   std::optional<int> kMin;
   bool noSoften = false;
+  std::optional<adb::FrameSettings::Fronts> fronts;
 };
 
 /// Runs the scene; the exit code: 0, or 2 when the scene file or its meshes are bad (one

@@ -191,6 +191,12 @@ TEST(SceneFile, ReferencesAndMotionsAreChecked) {
 TEST(SceneFile, NonFiniteAndOutOfRangeNumbersAreRefused) {
   EXPECT_EQ(errorOf(edited("\"time_step\": 0.01", "\"time_step\": 0")).where(), "world.time_step");
   EXPECT_EQ(errorOf(edited("\"p_accept\": 0.8", "\"p_accept\": 1.5")).where(), "world.p_accept");
+  const SceneError fronts =
+      errorOf(edited("\"p_accept\": 0.8", "\"p_accept\": 0.8, \"fronts\": \"sometimes\""));
+  EXPECT_EQ(fronts.where(), "world.fronts");
+  EXPECT_NE(std::string(fronts.what()).find("not one of node_pair_budget, always, never"),
+            std::string::npos)
+      << fronts.what();
   EXPECT_EQ(errorOf(edited("[5, 0.5, 5]", "[5, -0.5, 5]")).where(), "shapes.ground.half_extents");
   EXPECT_EQ(errorOf(edited("\"node_pairs\": 20000", "\"node_pairs\": -3")).where(),
             "world.budget.node_pairs");

@@ -225,6 +225,9 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
     q.descent = starved || pair.meshMesh().cut() ? ExactDescent::DeepestFirst
                                                  : ExactDescent::TreeOrder;
   }
+  q.keepFront = settings.fronts == FrameSettings::Fronts::Always ||
+                (settings.fronts == FrameSettings::Fronts::WithNodePairBudget &&
+                 settings.budgetNodePairs != FrameSettings{}.budgetNodePairs);
   StepBudget budget;
   if (!unbudgeted(settings)) budget = StepBudget{grant, micros};
   const QueryResult& r = pair.meshMesh().query(pair, q, budget, resume);
@@ -390,6 +393,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
 void FrameScheduler::keepSkipped() {
   for (DeferredPair& pair : m_wholes) {
     m_stats.neededNodePairs += pair.algorithm->lastWork();
+    m_stats.fromScratchNodePairs += pair.algorithm->lastWork();
     if (pair.written) continue;
     PairWrappers wrappers(pair);
     pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
@@ -513,6 +517,7 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
       }
     }
     m_stats.neededNodePairs += pair.meshMesh().needed();
+    m_stats.fromScratchNodePairs += pair.meshMesh().neededFromScratch();
     confidenceSum += pair.confidence;
     m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
     completenessSum += pair.completeness;

@@ -52,6 +52,8 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   bool cut() const { return isBudgetStop(m_lastStop); }
   /// Node pairs the last query that finished needed: the next step's first grant.
   std::uint64_t needed() const { return m_needed; }
+  /// What needed() would be for a descent from the roots (QueryResult::fromScratchNodePairs).
+  std::uint64_t neededFromScratch() const { return m_neededFromScratch; }
   /// The node pairs the last query left unresolved (empty when it completed).
   const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
 
@@ -69,6 +71,7 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   Traversal m_traversal;  // grows to this pair's largest query, then stays
   StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
   std::uint64_t m_needed = 0;
+  std::uint64_t m_neededFromScratch = 0;
 };
 
 }  // namespace adb

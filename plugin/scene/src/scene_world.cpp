@@ -75,6 +75,7 @@ FrameSettings frameSettings(const Scene& scene, Backend backend) {
     f.kMin = w.kMin;
     f.pAccept = w.pAccept;
   }
+  f.fronts = w.fronts;
   f.softenPlausible = scene.effects.softContacts;
   return f;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "adb/bullet/frame_budget.h"
 #include "adb/core/geometry.h"
 
 namespace adb::scene {
@@ -28,6 +29,8 @@ struct WorldSpec {
   double pMin = 0.99;    ///< quality target: probability (with kMin > 0)
   int kMin = 0;          ///< quality target: node pairs above pMin (0: contacts, no target)
   double pAccept = 0.9;  ///< unresolved node pairs at or above this become plausible contacts
+  /// Whether mesh-mesh pairs keep their fronts across steps (adb::FrameSettings::fronts).
+  adb::FrameSettings::Fronts fronts = adb::FrameSettings::Fronts::WithNodePairBudget;
 };
 
 struct ShapeSpec {
