@@ -60,6 +60,15 @@ bool unbudgeted(const FrameSettings& s) {
   return s.budgetNodePairs == kUnlimited && std::isinf(s.budgetMicros);
 }
 
+// Whether mesh-mesh queries walk the fronts they keep (QuerySettings::keepFront): the same
+// contacts as a descent from the roots for fewer node pairs, but more time per node pair
+// (FrameSettings::fronts), so by default where node pairs are what the budget spends.
+bool keepsFronts(const FrameSettings& s) {
+  using Fronts = FrameSettings::Fronts;
+  return s.fronts == Fronts::Always ||
+         (s.fronts == Fronts::WithNodePairBudget && s.budgetNodePairs != kUnlimited);
+}
+
 // Doubt left in a cut query: Pr[X >= 1] summed over its unresolved node pairs (an upper
 // bound on the chance that one of them holds an intersecting triangle pair).
 double doubtOf(const std::vector<OpenPair>& open) {
@@ -225,9 +234,7 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
     q.descent = starved || pair.meshMesh().cut() ? ExactDescent::DeepestFirst
                                                  : ExactDescent::TreeOrder;
   }
-  q.keepFront = settings.fronts == FrameSettings::Fronts::Always ||
-                (settings.fronts == FrameSettings::Fronts::WithNodePairBudget &&
-                 settings.budgetNodePairs != FrameSettings{}.budgetNodePairs);
+  q.keepFront = keepsFronts(settings);  // exact mode only: the core ignores it otherwise
   StepBudget budget;
   if (!unbudgeted(settings)) budget = StepBudget{grant, micros};
   const QueryResult& r = pair.meshMesh().query(pair, q, budget, resume);

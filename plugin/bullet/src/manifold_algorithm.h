@@ -4,8 +4,9 @@
 // Shared: which body is the mesh, one persistent manifold made on first use and released
 // with the algorithm, the reach of its contacts (speculative for fast bodies that ask for
 // continuous collision detection), the pose check, and the hand-over to the step's
-// scheduler. Under adb::Dispatcher every pair (a compound's children included) is only noted while Bullet dispatches; the scheduler then runs them all within the step's
-// one budget (frame_scheduler.h). Elsewhere (a plain btCollisionDispatcher, contactTest) a
+// scheduler. Under adb::Dispatcher every pair (a compound's children included) is only
+// noted while Bullet dispatches; the scheduler then runs them all within the step's one
+// budget (frame_scheduler.h). Elsewhere (a plain btCollisionDispatcher, contactTest) a
 // pair is collided at once.
 #pragma once
 

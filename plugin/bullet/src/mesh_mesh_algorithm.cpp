@@ -46,10 +46,6 @@ QuerySettings forContacts(QuerySettings s, double margin) {
   // Contacts come from the witnesses: once they are full, every further hit would be
   // dropped, and the rest of the descent would change nothing but its own cost.
   s.stopWhenWitnessesFull = true;
-  // Each pair keeps the node pairs its last query evaluated and re-tests only those its
-  // bodies' motion may have changed: the same contacts as a descent from the roots, and a
-  // resting pile pays for what moved (traversal_front.h; docs/bullet-budget.md).
-  s.keepFront = s.keepFront && s.mode == QueryMode::Exact;
   if (margin > 0.0) {
     // Speculative contacts must be the closest pairs (the witnesses keep the closest once
     // full), not the first the descent finds: sampled per region in the trees' order, a gear

@@ -45,11 +45,21 @@ int roundCount(double x, int cap) {
 
 // Node `self`'s slab against the other node's box: the box's centre seen in self's frame, and
 // its radius along self's slab normal (self.slabReach . the other's own half extents).
-bool slabOverlaps(const PosedNode& self, const PosedNode& other, double slack) {
+// How far the other box's centre lies from self's slab's mid-plane.
+double slabOffset(const PosedNode& self, const PosedNode& other) {
   const NodeDistribution& d = *self.d;
   const double centre = d.normal[0] * other.cOther[0] + d.normal[1] * other.cOther[1] +
                         d.normal[2] * other.cOther[2];
-  return std::abs(centre - d.offset) <= d.halfWidth + self.slabReach.dot(other.h) + slack;
+  return std::abs(centre - d.offset);
+}
+
+// The slab's half width plus the other box's radius along its normal.
+double slabReachOf(const PosedNode& self, const PosedNode& other) {
+  return self.d->halfWidth + self.slabReach.dot(other.h);
+}
+
+bool slabOverlaps(const PosedNode& self, const PosedNode& other, double slack) {
+  return slabOffset(self, other) <= slabReachOf(self, other) + slack;
 }
 
 }  // namespace
@@ -195,13 +205,19 @@ double ChildPairs::separation(int i, int j) {
   const PosedNode& pb = m_b[j];
   const double inA = ((pb.cOther - pa.c).cwiseAbs() - pa.h - pb.hOther).maxCoeff();
   const double inB = ((pa.cOther - pb.c).cwiseAbs() - pb.h - pa.hOther).maxCoeff();
-  const auto slab = [](const PosedNode& self, const PosedNode& other) {
-    const NodeDistribution& d = *self.d;
-    const double centre = d.normal[0] * other.cOther[0] + d.normal[1] * other.cOther[1] +
-                          d.normal[2] * other.cOther[2];
-    return std::abs(centre - d.offset) - d.halfWidth - self.slabReach.dot(other.h);
-  };
-  return std::max(std::max(inA, inB), std::max(slab(pa, pb), slab(pb, pa))) - m_frame.slack;
+  const double slabA = slabOffset(pa, pb) - slabReachOf(pa, pb);
+  const double slabB = slabOffset(pb, pa) - slabReachOf(pb, pa);
+  return std::max(std::max(inA, inB), std::max(slabA, slabB)) - m_frame.slack;
+}
+
+PairTest ChildPairs::test(int i, int j) {
+  const double separation = this->separation(i, j);
+  // overlap() sums the same terms in another order: the two can disagree only within a few
+  // ulps of the scene's magnitude, far inside the slack (1e-12 of it). Outside that band the
+  // sign decides; inside it, overlap()'s answer, so that a walk and a descent agree.
+  const bool overlaps =
+      std::abs(separation) > m_frame.slack ? separation <= 0.0 : overlap(i, j);
+  return {overlaps, separation};
 }
 
 bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,

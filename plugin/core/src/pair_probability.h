@@ -49,6 +49,12 @@ struct PosedNode {
   const NodeDistribution* d; // slab, cell side and density
 };
 
+/// overlap() and separation() of one pair, from one measure.
+struct PairTest {
+  bool overlaps;
+  double separation;
+};
+
 /// The up to 2 x 2 child pairs of one expansion, posed lazily: B's children are mapped into
 /// A's frame at once (every pair's first test needs them), an A child is mapped into B's
 /// frame and a slab normal into the other frame only when a pair gets that far. Rejected
@@ -73,6 +79,9 @@ class ChildPairs {
   /// than d (each in the other's frame), the value changes by at most d: the certificate a
   /// traversal front keeps across steps.
   double separation(int i, int j);
+  /// Both: overlap()'s answer (bit for bit) and separation(), for about the cost of the
+  /// second.
+  PairTest test(int i, int j);
   /// The posed nodes, complete once overlap(i, j) returned true.
   const PosedNode& a(int i) const { return m_a[i]; }
   const PosedNode& b(int j) const { return m_b[j]; }

@@ -511,38 +511,65 @@ struct Traversal::Impl {
     finish(exactHit, 1.0, StopReason::Completed);
   }
 
-  // Exact mode's expansion. Deepest first (ExactDescent), the overlapping children go on the
-  // stack shallowest first, so that the deepest overlap is explored first: a budget that cuts
-  // the descent has then seen the deepest contacts, the ones that keep bodies apart. Otherwise
-  // the trees' order, which samples the same triangle pairs step after step (deepest first,
-  // near-equal depths swap with every small motion, and the contacts of a resting stack
-  // jumped: its top boxes drifted up to 40 % further).
-  void pushOverlappingChildren(const Entry& e) {
-    const Expansion x = expand(e);
+  // The child pairs of an expansion in the order exact mode pops them, each with whether it
+  // overlaps and, with `measure`, how far apart or deep (ChildPairs::separation, for the
+  // fronts). Deepest first (ExactDescent), the deepest box overlap comes first: a budget that
+  // cuts the descent has then seen the deepest contacts, the ones that keep bodies apart.
+  // Otherwise the trees' order reversed (the stack pops the last child first), which samples
+  // the same triangle pairs step after step (deepest first, near-equal depths swap with every
+  // small motion, and the contacts of a resting stack jumped: its top boxes drifted up to
+  // 40 % further). In the trees' order the pairs apart keep their place among the others: a
+  // front's walk follows the recorded order when they come to overlap.
+  struct ChildTest {
+    std::uint32_t a, b;
+    bool overlaps;
+    double separation;
+  };
+  int orderedChildren(const Expansion& x, bool measure, ChildTest out[4]) {
     detail::ChildPairs pairs = pairsOf(x);
-    Entry kids[4];
-    float depth[4];
+    ChildTest sorted[4];
+    float key[4];  // ascending: the pop order is its reverse
     int count = 0;
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
         ++work.nodePairs;
-        const double d =
-            deepestFirst ? pairs.overlapDepth(i, j) : (pairs.overlap(i, j) ? 0.0 : -1.0);
-        if (d < 0.0) continue;
-        int k = count++;
-        for (; k > 0 && depth[k - 1] > static_cast<float>(d); --k) {
-          kids[k] = kids[k - 1];
-          depth[k] = depth[k - 1];
+        ChildTest t{x.ca[i], x.cb[j], false, 0.0};
+        if (measure) {
+          const detail::PairTest r = pairs.test(i, j);
+          t.overlaps = r.overlaps;
+          t.separation = r.separation;
         }
-        kids[k] = Entry{kUnestimated, 1.0f, x.ca[i], x.cb[j], kNoRegion,
-                        static_cast<std::uint16_t>(x.depthA), static_cast<std::uint16_t>(x.depthB),
-                        0.0f};
-        depth[k] = static_cast<float>(d);
+        float depth = 0.0f;
+        if (deepestFirst) {
+          const double d = pairs.overlapDepth(i, j);  // -1 when apart
+          depth = static_cast<float>(d);
+          t.overlaps = d >= 0.0;
+        } else if (!measure) {
+          t.overlaps = pairs.overlap(i, j);
+        }
+        int k = count++;
+        for (; k > 0 && key[k - 1] > depth; --k) {
+          sorted[k] = sorted[k - 1];
+          key[k] = key[k - 1];
+        }
+        sorted[k] = t;
+        key[k] = depth;
       }
     }
-    for (int k = 0; k < count; ++k) {
-      kids[k].region = childRegion(e.region, x.depthA, x.depthB);
-      heap.push_back(kids[k]);
+    for (int k = 0; k < count; ++k) out[k] = sorted[count - 1 - k];
+    return count;
+  }
+
+  // Exact mode's expansion: the overlapping children go on the stack, the first to pop last.
+  void pushOverlappingChildren(const Entry& e) {
+    const Expansion x = expand(e);
+    ChildTest kids[4];
+    for (int k = orderedChildren(x, false, kids); k-- > 0;) {
+      if (!kids[k].overlaps) continue;
+      heap.push_back(Entry{kUnestimated, 1.0f, kids[k].a, kids[k].b,
+                           childRegion(e.region, x.depthA, x.depthB),
+                           static_cast<std::uint16_t>(x.depthA),
+                           static_cast<std::uint16_t>(x.depthB), 0.0f});
     }
   }
 
@@ -689,45 +716,22 @@ struct Traversal::Impl {
   void expandFresh(const detail::FrontEntry& c, WalkFrame& out) {
     const Expansion x = expand(Entry{kUnestimated, 1.0f, c.a, c.b, kNoRegion, c.depthA, c.depthB,
                                      0.0f});
-    detail::ChildPairs pairs = pairsOf(x);
-    detail::FrontEntry kids[4];
-    bool overlaps[4];
-    float key[4];
-    int count = 0;
-    for (int i = 0; i < x.countA; ++i) {
-      for (int j = 0; j < x.countB; ++j) {
-        ++work.nodePairs;
-        const double depth = deepestFirst ? pairs.overlapDepth(i, j) : 0.0;
-        const bool ov = deepestFirst ? depth >= 0.0 : pairs.overlap(i, j);
-        const detail::FrontEntry kid{x.ca[i], x.cb[j], certify(ov, pairs.separation(i, j)),
-                                     static_cast<std::uint8_t>(x.depthA),
-                                     static_cast<std::uint8_t>(x.depthB), 0};
-        // runExact's stable insertion by depth, pushed in that order and popped last first.
-        // In the trees' order the pairs apart are placed as if they overlapped: the recorded
-        // order must not depend on which overlap, since a later walk follows it when others
-        // do (deepest first depends on the pose anyway: it only serves budgeted queries).
-        int k = count++;
-        for (; k > 0 && key[k - 1] > static_cast<float>(depth); --k) {
-          kids[k] = kids[k - 1];
-          overlaps[k] = overlaps[k - 1];
-          key[k] = key[k - 1];
-        }
-        kids[k] = kid;
-        overlaps[k] = ov;
-        key[k] = static_cast<float>(depth);
-      }
-    }
+    ChildTest kids[4];
+    const int count = orderedChildren(x, true, kids);
     out.kidCount = static_cast<std::uint8_t>(count);
     for (int k = 0; k < count; ++k) {
-      out.kids[k] = kids[count - 1 - k];
-      out.kidOverlaps[k] = overlaps[count - 1 - k];
+      out.kids[k] = detail::FrontEntry{kids[k].a, kids[k].b,
+                                       certify(kids[k].overlaps, kids[k].separation),
+                                       static_cast<std::uint8_t>(x.depthA),
+                                       static_cast<std::uint8_t>(x.depthB), 0};
+      out.kidOverlaps[k] = kids[k].overlaps;
     }
   }
 
   // The certificate of a pair just tested, counted from the front's reference pose: its
   // answer holds for any pose within |measured| - motion of the reference (stored with
-  // `consumed` added). The answer is overlap()'s (runExact's); a measure that disagrees
-  // within rounding certifies nothing.
+  // `consumed` added). The answer is overlap()'s (runExact's, ChildPairs::test); a measure
+  // that disagrees within rounding certifies nothing.
   float certify(bool overlaps, double separation) const {
     const double held = overlaps ? -separation - motion : separation - motion;
     if (!(held > 0.0)) return 0.0f;
@@ -736,10 +740,10 @@ struct Traversal::Impl {
 
   bool testPair(detail::FrontEntry& c) {
     ++work.nodePairs;
-    detail::ChildPairs pair(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame);
-    const bool overlaps = pair.overlap(0, 0);
-    c.certificate = certify(overlaps, pair.separation(0, 0));
-    return overlaps;
+    const detail::PairTest t =
+        detail::ChildPairs(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame).test(0, 0);
+    c.certificate = certify(t.overlaps, t.separation);
+    return t.overlaps;
   }
 
   // Appends an entry to the record; returns where it went.

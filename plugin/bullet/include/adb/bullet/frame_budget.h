@@ -61,7 +61,7 @@ struct FrameSettings {
   /// Whether each mesh-mesh pair keeps the node pairs its last query evaluated and re-tests
   /// only those its bodies' motion may have changed (adb::QuerySettings::keepFront): the
   /// same contacts, for about a third of the node pairs on a settling pile. The walk costs
-  /// more time per node pair than the descent it replaces (on the 50-body pile 1.6x the
+  /// more time per node pair than the descent it replaces (on the 50-body pile 1.08x the
   /// step time for 0.30x the node pairs, docs/bullet-budget.md), so by default fronts are
   /// kept where node pairs are what is budgeted.
   enum class Fronts {
