@@ -14,7 +14,7 @@ using Json = nlohmann::ordered_json;
 constexpr const char* kStepColumns =
     "step,time,seconds,budget_use,mesh_pairs,cut_pairs,mean_confidence,worst_confidence,"
     "overlapping,events,contacts,penetration,probed_penetration,kinetic,energy,at_rest,"
-    "node_pairs,needed_node_pairs,from_scratch_node_pairs\n";
+    "node_pairs,needed_node_pairs,from_scratch_node_pairs,other_node_pairs\n";
 
 const std::string& bodyName(const SceneWorld& world, std::uint32_t i) {
   return world.scene().bodies.at(i).name;
@@ -97,7 +97,8 @@ void Recorder::record(const SceneWorld& world, double probed) {
             << r.worstConfidence << ',' << r.overlapping << ',' << r.events << ','
             << r.contacts << ',' << r.penetration << ',' << probed << ',' << r.kinetic << ','
             << r.energy << ',' << r.atRest << ',' << r.frame.nodePairs << ','
-            << r.frame.neededNodePairs << ',' << r.frame.fromScratchNodePairs << '\n';
+            << r.frame.neededNodePairs << ',' << r.frame.fromScratchNodePairs << ','
+            << r.frame.otherNodePairs << '\n';
   }
   if (m_events.is_open()) {
     for (const OverlapEvent& e : world.events()) {
