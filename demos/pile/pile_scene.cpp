@@ -16,7 +16,6 @@
 #include "adb/bullet/registration.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/support/benchmark_poses.h"
-#include "adb/core/mass_properties.h"
 #include "adb/support/mesh_generators.h"
 
 namespace adb::demo {
@@ -40,12 +39,13 @@ btVector3 toBt(const Vec3& v) {
                    static_cast<btScalar>(v.z()));
 }
 
-// The mesh moved into its principal frame: Bullet's bodies assume the shape's origin is the
-// centre of mass and its axes the principal axes.
-TriangleMesh principalFrame(const TriangleMesh& mesh) {
-  const MassProperties m = computeMassProperties(mesh);
-  const Mat3 rt = m.principalAxes.transpose();
-  return gen::transformed(mesh, Pose{rt, -(rt * m.centerOfMass)});
+// As adb::scene places bodies: the rotation as a matrix, entry by entry.
+btTransform toBt(const Pose& p) {
+  btMatrix3x3 basis;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) basis[r][c] = static_cast<btScalar>(p.rotation(r, c));
+  }
+  return btTransform(basis, toBt(p.translation));
 }
 
 // The three kinds of body, at about `triangles` triangles each, ~0.8 units across.
@@ -54,9 +54,9 @@ std::vector<TriangleMesh> bodyMeshes(std::size_t triangles) {
   const int ring = std::max(6, static_cast<int>(std::sqrt(t / 4.0)));
   const int tooth = std::max(4, static_cast<int>(t / 80.0));
   const int along = std::max(24, static_cast<int>(t / 16.0));
-  return {principalFrame(gen::makeTorus(0.35, 0.12, 2 * ring, ring)),
-          principalFrame(gen::makeGear(10, 0.4, 0.32, 0.15, 0.15, tooth)),
-          principalFrame(gen::makeTorusKnot(2, 3, 0.3, 0.045, along, 8))};
+  return {gen::makeTorus(0.35, 0.12, 2 * ring, ring),
+          gen::makeGear(10, 0.4, 0.32, 0.15, 0.15, tooth),
+          gen::makeTorusKnot(2, 3, 0.3, 0.045, along, 8)};
 }
 
 // A mesh scaled about its bounds' centre so that its largest extent is `size` (the generated
@@ -95,7 +95,6 @@ struct PileScene::Impl {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<std::shared_ptr<const MeshData>> kinds;  // the bodies' meshes, by kind
-  std::vector<Vec3> localInertia;  // per dynamic body, unit mass
   std::vector<std::vector<Vec3>> usedVertices;         // per kind of body
   std::vector<const std::vector<Vec3>*> bodyVertices;  // per dynamic body, its kind's used ones
   std::vector<double> bodySize;               // per dynamic body, its bounding-box diagonal
@@ -192,11 +191,11 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
   std::vector<std::shared_ptr<const MeshData>>& kinds = s.kinds;
   if (settings.meshes.empty()) {
     for (TriangleMesh& mesh : bodyMeshes(settings.trianglesPerBody)) {
-      kinds.push_back(MeshData::build(std::move(mesh)));
+      kinds.push_back(MeshData::build(std::move(mesh), BuildSettings{}, ShapeFrame::Principal));
     }
   } else {
     for (const TriangleMesh& mesh : settings.meshes) {
-      kinds.push_back(MeshData::build(principalFrame(scaledTo(mesh, 0.8))));
+      kinds.push_back(MeshData::build(scaledTo(mesh, 0.8), BuildSettings{}, ShapeFrame::Principal));
     }
   }
   const int kindCount = static_cast<int>(kinds.size());
@@ -237,14 +236,11 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
     const Vec3 at(-0.9 + 0.9 * (cell % 3) + jitter(rng), 1.0 + 0.9 * layer,
                   -0.9 + 0.9 * (cell / 3) + jitter(rng));
     const Eigen::Quaterniond q = randomRotation(rng);
-    const btTransform pose(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
-                                        static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
-                           toBt(at));
+    const btTransform pose = toBt(Pose{q.toRotationMatrix(), at});
     btCollisionShape* shape = adb ? s.makeShape(kinds[kind], true, true) : kindShapes[kind];
     const Vec3 inertia = kinds[kind]->mass.inertia.diagonal();
     m_dynamic.push_back(s.addBody(shape, 1.0, inertia, pose));
     m_dynamic.back()->setActivationState(DISABLE_DEACTIVATION);  // measure every step
-    s.localInertia.push_back(inertia);
     s.bodyVertices.push_back(&s.usedVertices[static_cast<std::size_t>(kind)]);
     s.bodySize.push_back(kinds[kind]->mesh.bounds().extent().norm());
     s.bodyTree.push_back(&kinds[kind]->tree);
@@ -258,7 +254,7 @@ StepStats PileScene::step() {
   Impl& s = *m_impl;
   StepStats st;
   const auto t0 = std::chrono::steady_clock::now();
-  s.world->stepSimulation(btScalar(1.0 / 60.0), 1, btScalar(1.0 / 60.0));
+  s.world->stepSimulation(btScalar(1.0 / 60.0), 0);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (s.adbDispatcher) st.frame = s.adbDispatcher->lastFrameStats();
 
@@ -279,7 +275,7 @@ StepStats PileScene::step() {
     const btRigidBody* b = m_dynamic[i];
     const btVector3 v = b->getLinearVelocity();
     const btVector3 w = b->getWorldTransform().getBasis().transpose() * b->getAngularVelocity();
-    const Vec3& inertia = s.localInertia[i];
+    const btVector3 inertia = b->getLocalInertia();
     const double kinetic = 0.5 * v.length2() + 0.5 * (inertia.x() * w.x() * w.x() +
                                                       inertia.y() * w.y() * w.y() +
                                                       inertia.z() * w.z() * w.z());
@@ -291,8 +287,9 @@ StepStats PileScene::step() {
     const btVector3& c = b->getWorldTransform().getOrigin();
     // A body whose centre is a quarter of its size below the floor's top is going through
     // (a flat torus resting 0.1 into the floor has its centre at its top).
-    const bool inBin = c.y() > kFloorTop - 0.25 * s.bodySize[i] &&
-                       std::abs(c.x()) < kBinInside && std::abs(c.z()) < kBinInside;
+    const double margin = 0.25 * s.bodySize[i];
+    const bool inBin = c.y() > kFloorTop - margin && std::abs(c.x()) < kBinInside + margin &&
+                       std::abs(c.z()) < kBinInside + margin;
     st.lost += inBin ? 0 : 1;
     // The lowest vertex: world y = row 1 of the basis . vertex + origin y. Bodies above the
     // floor by more than their size cannot reach it.
