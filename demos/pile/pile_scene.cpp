@@ -166,6 +166,8 @@ PileScene::PileScene(const SceneSettings& settings) : m_impl(std::make_unique<Im
   s.world = std::make_unique<btDiscreteDynamicsWorld>(s.dispatcher.get(), &s.broadphase,
                                                       &s.solver, s.configuration.get());
   s.world->setGravity(btVector3(0, static_cast<btScalar>(-kGravity), 0));
+  // No swept boxes: no body has CCD, and adb::scene builds worlds without it the same way.
+  s.world->getDispatchInfo().m_useContinuous = false;
 
   bool first = true;
   for (const Box& b : kBin) {
