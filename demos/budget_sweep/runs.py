@@ -68,8 +68,11 @@ class Summary:
 
     # --- windows -----------------------------------------------------------------------
     def _col(self, name, first=1, last=None):
+        """A steps.csv column over steps first..last; the probe's columns are -1 where the
+        step was not probed, and those steps are left out."""
         last = last or len(self.rows)
-        return [float(r[name]) for r in self.rows[first - 1:last] if r[name] != ""]
+        values = [float(r[name]) for r in self.rows[first - 1:last] if r[name] != ""]
+        return [v for v in values if v >= 0] if name.startswith("probed_") else values
 
     @staticmethod
     def _mean(v):
@@ -92,7 +95,7 @@ class Summary:
         return self._mean(self._col("node_pairs", SETTLED_FROM))
 
     def cut_share(self):
-        pairs = sum(self._col("pairs"))
+        pairs = sum(self._col("mesh_pairs"))
         return sum(self._col("cut_pairs")) / pairs if pairs else 0.0
 
     def lost(self):
@@ -106,7 +109,7 @@ class Summary:
 
     def probed_max(self, last=None):
         # NaN, like _mean, where the window holds no probe (--gimpact-steps < --probe-every).
-        return max(self._col("probed_depth", 1, last), default=float("nan"))
+        return max(self._col("probed_penetration", 1, last), default=float("nan"))
 
     def probed_mean(self, last=None):
         """Each body's deepest penetration, averaged over bodies and probes."""
@@ -162,7 +165,7 @@ def run(spec: RunSpec, demo: str, root: str, reuse: bool = True) -> Summary:
         wall = time.monotonic() - t0
         with open(os.path.join(out, "stdout.txt"), "w") as f:
             f.write(proc.stdout)
-        # adb-demo exits 1 when a body fell through the floor: a result, not a failure.
+        # adb-demo exits 1 when a body left the bin: a result, not a failure.
         if proc.returncode not in (0, 1):
             sys.exit("budget_sweep: %s failed (exit %d), see %s/stdout.txt"
                      % (text, proc.returncode, out))

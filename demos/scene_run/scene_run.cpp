@@ -13,6 +13,7 @@
 #include "adb/scene/scene_world.h"
 #include "common/progress.h"
 #include "render/png_file.h"
+#include "scene_run/convex_peer.h"
 #include "scene_run/movie.h"
 #include "scene_run/scene_picture.h"
 
@@ -112,11 +113,16 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
                  const std::filesystem::path& folder) {
   RunResult result;
   result.folder = folder;
-  SceneWorld world(scene, backend);
+  DecompositionReport decomposition;
+  SceneWorld world(scene, backend, convexShapeMaker(decomposition));
   const scene::BuildReport& built = world.built();
+  if (backend == Backend::Convex) {
+    std::printf("convex decomposition (HACD): %s\n", decomposition.describe().c_str());
+  }
   std::printf("scene %s: %s\n  backend %s, %d bodies (%d meshes, %zu triangles), built in "
               "%.2f s\n  world: %s\n  budget %s, p_min %.3g, k_min %d, p_accept %.3g\n",
-              scene.file.filename().string().c_str(), scene.description.c_str(),
+              scene.file.empty() ? "(made in code)" : scene.file.filename().string().c_str(),
+              scene.description.c_str(),
               toString(backend), built.bodies, built.meshBodies, built.triangles,
               built.buildSeconds, built.describe().c_str(),
               backend == Backend::Adb ? budgetText(scene.world.budget).c_str() : "none",
@@ -136,7 +142,12 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   for (int step = 1; step <= steps; ++step) {
     const scene::StepRecord& r = world.step();
     const bool probe = o.probeEvery > 0 && (step % o.probeEvery == 0 || step == steps);
-    recorder->record(world, probe ? world.probePenetration() : -1.0);
+    if (probe) {
+      const scene::PenetrationReport probed = world.probePenetration();
+      recorder->record(world, &probed);
+    } else {
+      recorder->record(world);
+    }
     const bool inStrip = std::find(strip.begin(), strip.end(), step) != strip.end();
     const bool inMovie = step % frameEvery == 0 || step == steps;
     if (o.render && (inStrip || inMovie)) {
@@ -170,9 +181,13 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
 }
 
 void printSummary(const RunSummary& s) {
-  std::printf("\n%d steps: %.3f ms/step mean, %.3f max; budget use %.2f; pairs cut %llu of %llu; "
-              "confidence mean %.4f, worst %.4f\n",
-              s.steps, s.meanStepMillis, s.maxStepMillis, s.meanBudgetUse,
+  std::printf("\n%d steps: %.3f ms/step mean, %.3f p99, %.3f max; adb's pairs %.3f ms/step mean, "
+              "%.3f p99; contacts exact %llu, plausible %llu\n",
+              s.steps, s.meanStepMillis, s.p99StepMillis, s.maxStepMillis, s.meanPairMillis,
+              s.p99PairMillis, static_cast<unsigned long long>(s.exactContacts),
+              static_cast<unsigned long long>(s.plausibleContacts));
+  std::printf("budget use %.2f; pairs cut %llu of %llu; confidence mean %.4f, worst %.4f\n",
+              s.meanBudgetUse,
               static_cast<unsigned long long>(s.cutPairSteps),
               static_cast<unsigned long long>(s.meshPairSteps), s.meanConfidence,
               s.worstConfidence);
@@ -182,7 +197,9 @@ void printSummary(const RunSummary& s) {
     std::printf("deepest contact %.4f (mean of each step's %.4f)", s.maxPenetration,
                 s.meanPenetration);
     if (s.maxProbedPenetration >= 0) {
-      std::printf(", body-body penetration from the geometry %.4f", s.maxProbedPenetration);
+      std::printf(", body-body penetration from the geometry %.4f (each body's deepest, "
+                  "averaged over bodies and probes, %.4f)",
+                  s.maxProbedPenetration, s.meanProbedPenetration);
     }
     std::printf("\n");
   }
@@ -190,6 +207,11 @@ void printSummary(const RunSummary& s) {
     std::printf("at rest at the end: %d of %d; kinetic energy %.4f J\n", s.atRestAtEnd,
                 s.dynamicBodies, s.kineticAtEnd);
   }
+  if (!s.worldBounds) return;
+  std::printf("bodies lost (out of the world's bounds): %d at most, %d at the end; deepest "
+              "vertex out of the bounds %.4f (%.2f %% of its body's size), at the end %.4f\n",
+              s.mostLost, s.lostAtEnd, s.maxOutOfBounds, 100 * s.maxOutOfBoundsRelative,
+              s.outOfBoundsAtEnd);
 }
 
 void printComparison(const std::vector<RunResult>& runs) {
@@ -226,20 +248,19 @@ int compare(const Scene& scene, const SceneRunOptions& o) {
     std::printf("\npicture (last frame of each run, adb | exact | GImpact): %s\n",
                 picture.string().c_str());
   }
-  return 0;
+  return runs.front().summary.mostLost > 0 ? 1 : 0;
 }
 
 }  // namespace
 
-int runScene(const SceneRunOptions& o) {
+int runScene(Scene scene, const SceneRunOptions& o) {
   try {
-    Scene scene = scene::loadScene(o.scene);
     applyOverrides(o, scene);
     if (o.compare) return compare(scene, o);
     const RunResult r = runOne(scene, scene::parseBackend(o.backend), o, o.out);
     printSummary(r.summary);
     if (!o.out.empty()) std::printf("outputs: %s\n", o.out.string().c_str());
-    return 0;
+    return r.summary.mostLost > 0 ? 1 : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "adb-demo: %s\n", e.what());
     return 2;

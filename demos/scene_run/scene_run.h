@@ -1,6 +1,6 @@
-// The scene run of adb-demo: a scene file built and stepped by adb::scene, with a progress bar,
-// a line now and then, the outputs (steps.csv, events.jsonl, summary.json, frames and a
-// movie), and the comparison of backends that `make demo` shows.
+// The run of adb-demo: a scene (a file, or the pile made in code) built and stepped by
+// adb::scene, with a progress bar, a line now and then, the outputs (steps.csv, events.jsonl,
+// summary.json, frames and a movie), and the comparison of backends that `make demo` shows.
 #pragma once
 
 #include <cstdint>
@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "adb/bullet/frame_budget.h"
+#include "adb/scene/scene.h"
 
 namespace adb::demo {
 
 struct SceneRunOptions {
-  std::filesystem::path scene;
-  std::string backend = "adb";
+  std::string backend = "adb";  ///< adb, exact, gimpact or convex
   std::optional<int> steps;  ///< default: the scene's world.steps
   int every = 0;             ///< a line every N steps; 0: about ten lines
   std::filesystem::path out;  ///< empty: write nothing
@@ -36,8 +36,9 @@ struct SceneRunOptions {
   std::optional<adb::FrameSettings::Fronts> fronts;
 };
 
-/// Runs the scene; the exit code: 0, or 2 when the scene file or its meshes are bad (one
-/// clear error on stderr) or an output cannot be written.
-int runScene(const SceneRunOptions& options);
+/// Runs the scene; the exit code: 0, 1 when a body was lost (out of world.bounds) at some
+/// step, or 2 when the scene's meshes are bad (one clear error on stderr) or an output cannot
+/// be written.
+int runScene(scene::Scene scene, const SceneRunOptions& options);
 
 }  // namespace adb::demo

@@ -132,6 +132,50 @@ TEST(SceneFile, AMissingMeshFileIsNamedWithItsPath) {
   fs::remove_all(folder);
 }
 
+// What the pile needs of a scene, in a file: a mesh sized to its largest extent, a pose that
+// places the centre of mass, and bounds out of which a body is lost.
+TEST(SceneFile, SizeCentreOfMassPosesAndBoundsReadAndTheirFaultsAreNamed) {
+  const fs::path folder = fs::temp_directory_path() / "adb_scene_test_size";
+  fs::create_directories(folder);
+  std::ofstream(folder / "part.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                        "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::string text = edited("{\"type\": \"sphere\", \"radius\": 0.2}",
+                            "{\"type\": \"mesh\", \"file\": \"part.obj\", \"size\": 0.8}");
+  text = text.replace(text.find("\"mass\": 2,"), 10, "\"mass\": 2, \"pose_of\": \"centre_of_mass\",");
+  text = text.replace(text.find("\"p_accept\""), 0,
+                      "\"bounds\": {\"min\": [-1, 0, -1], \"max\": [1, 9, 1]}, ");
+  const Scene s = parseScene(text, "scene.json", folder);
+  EXPECT_DOUBLE_EQ(s.shapes[2].size, 0.8);
+  EXPECT_EQ(s.bodies[1].poseOf, BodySpec::PoseOf::CentreOfMass);
+  EXPECT_EQ(s.bodies[0].poseOf, BodySpec::PoseOf::Mesh);  // the default
+  ASSERT_TRUE(s.world.bounds.has_value());
+  EXPECT_EQ(s.world.bounds->lo, Vec3(-1, 0, -1));
+  EXPECT_EQ(s.world.bounds->hi, Vec3(1, 9, 1));
+
+  const auto faultOf = [&](const std::string& from, const std::string& to) {
+    std::string bad = text;
+    bad.replace(bad.find(from), from.size(), to);
+    try {
+      parseScene(bad, "scene.json", folder);
+    } catch (const SceneError& e) {
+      return std::string(e.what()).substr(std::string("scene.json: ").size());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(faultOf("\"size\": 0.8", "\"size\": 0.8, \"scale\": 2"),
+            "shapes.ball.size: give either 'size' or 'scale' and 'recentre', not both");
+  EXPECT_EQ(faultOf("\"size\": 0.8", "\"size\": -1").rfind("shapes.ball.size: ", 0), 0u);
+  EXPECT_EQ(faultOf("\"centre_of_mass\"", "\"center\""),
+            "bodies[1].pose_of: 'center' is not one of mesh, centre_of_mass");
+  EXPECT_EQ(faultOf("\"kind\": \"static\", \"position\": [0, -0.5, 0]}",
+                    "\"kind\": \"static\", \"position\": [0, -0.5, 0], \"pose_of\": \"centre_of_mass\"}"),
+            "bodies[0].pose_of: only a dynamic mesh body has a centre of mass to place");
+  EXPECT_EQ(faultOf("\"max\": [1, 9, 1]", "\"max\": [1, 0, 1]"),
+            "world.bounds.max: must exceed 'min' on every axis");
+  EXPECT_EQ(faultOf("\"max\": [1, 9, 1]", "\"top\": [1, 9, 1]").rfind("world.bounds", 0), 0u);
+  fs::remove_all(folder);
+}
+
 TEST(SceneFile, UnknownShapesAndModelsListWhatIsKnown) {
   const SceneError body = errorOf(edited("\"shape\": \"ring\"", "\"shape\": \"rnig\""));
   EXPECT_EQ(body.where(), "bodies[1].shape");

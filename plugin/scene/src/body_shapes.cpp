@@ -42,6 +42,26 @@ TriangleMesh recentred(const TriangleMesh& mesh) {
   return gen::transformed(mesh, Pose{Mat3::Identity(), -centre});
 }
 
+// Scaled about its box's centre so that its largest extent is `size`.
+TriangleMesh sizedTo(const TriangleMesh& mesh, double size) {
+  const Vec3 centre = mesh.bounds().center();
+  const double extent = mesh.bounds().extent().maxCoeff();
+  const double k = extent > 0 ? size / extent : 1.0;
+  std::vector<Vec3> vertices;
+  vertices.reserve(mesh.vertices().size());
+  for (const Vec3& v : mesh.vertices()) vertices.push_back((v - centre) * k);
+  return TriangleMesh(std::move(vertices), mesh.triangles(), mesh.name());
+}
+
+// A mesh shape's triangles: its file's or the mesh given in code, sized or scaled and
+// recentred as the shape asks.
+TriangleMesh meshOf(const ShapeSpec& s) {
+  TriangleMesh mesh = s.given ? *s.given : io::loadMesh(s.file.string());
+  if (s.size > 0) return sizedTo(mesh, s.size);
+  if (s.scale != 1.0) mesh = gen::transformed(mesh, Pose{s.scale * Mat3::Identity(), Vec3::Zero()});
+  return s.recentre ? recentred(mesh) : mesh;
+}
+
 // A primitive's display mesh: its triangles for pictures.
 TriangleMesh primitiveDisplay(const ShapeSpec& s) {
   switch (s.kind) {
@@ -66,7 +86,8 @@ std::unique_ptr<btCollisionShape> primitiveShape(const ShapeSpec& s) {
 
 }  // namespace
 
-BodyShapes::BodyShapes(const Scene& scene, Backend backend) : m_scene(scene), m_backend(backend) {}
+BodyShapes::BodyShapes(const Scene& scene, Backend backend, ConvexShapeMaker convex)
+    : m_scene(scene), m_backend(backend), m_convex(std::move(convex)) {}
 
 // The mesh of a mesh or generated shape, read or generated once. Its faults are the scene's:
 // they name the shape.
@@ -76,11 +97,7 @@ const TriangleMesh& BodyShapes::sourceMesh(std::size_t shape) {
   const ShapeSpec& s = m_scene.shapes[shape];
   const std::string file = m_scene.file.empty() ? "scene" : m_scene.file.string();
   try {
-    TriangleMesh mesh = s.kind == ShapeSpec::Kind::Generated
-                            ? generatedMesh(s)
-                            : gen::transformed(io::loadMesh(s.file.string()),
-                                               Pose{s.scale * Mat3::Identity(), Vec3::Zero()});
-    if (s.kind == ShapeSpec::Kind::Mesh && s.recentre) mesh = recentred(mesh);
+    TriangleMesh mesh = s.kind == ShapeSpec::Kind::Generated ? generatedMesh(s) : meshOf(s);
     return m_sources.emplace(shape, std::move(mesh)).first->second;
   } catch (const std::exception& e) {
     const std::string where = "shapes." + io::excerpt(s.name, 60);
@@ -108,18 +125,26 @@ btCollisionShape* BodyShapes::keep(std::unique_ptr<btCollisionShape> shape) {
   return m_shapes.back().get();
 }
 
-// adb's backends give every body its own MeshShape over the shared MeshData; GImpact shares
-// one shape per mesh (a static one is Bullet's BVH mesh, as Bullet users build static meshes).
+// adb's backends give every body its own MeshShape over the shared MeshData; the others share
+// one shape per mesh: GImpact's, or the convex backend's decomposition, for moving bodies, and
+// Bullet's BVH mesh for static ones (as Bullet users build static meshes).
 btCollisionShape* BodyShapes::meshShape(std::size_t shape,
                                         const std::shared_ptr<const MeshData>& data,
                                         BodySpec::Kind kind) {
-  if (m_backend != Backend::GImpact) return keep(std::make_unique<MeshShape>(data));
+  if (usesAdbShapes(m_backend)) return keep(std::make_unique<MeshShape>(data));
   const bool moving = kind != BodySpec::Kind::Static;
   const auto key = std::make_pair(shape, moving ? ShapeFrame::Principal : ShapeFrame::Mesh);
   auto it = m_shared.find(key);
   if (it != m_shared.end()) return it->second;
-  m_arrays.push_back(std::make_unique<TriangleArrays>(data->mesh));
   btCollisionShape* made = nullptr;
+  if (moving && m_backend == Backend::Convex) {
+    std::vector<std::unique_ptr<btCollisionShape>> parts = m_convex(*data);
+    if (parts.empty()) throw std::logic_error("the convex shape maker returned no shape");
+    for (auto& part : parts) made = keep(std::move(part));  // the body's shape comes last
+    m_shared.emplace(key, made);
+    return made;
+  }
+  m_arrays.push_back(std::make_unique<TriangleArrays>(data->mesh));
   if (moving) {
     auto gimpact = std::make_unique<btGImpactMeshShape>(m_arrays.back()->array.get());
     gimpact->updateBound();

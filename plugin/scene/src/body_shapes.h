@@ -23,15 +23,17 @@ struct BodyShape {
   btCollisionShape* shape = nullptr;
   /// The mesh behind it (nullptr for primitives): its tree, vertices and mass properties.
   std::shared_ptr<const MeshData> mesh;
-  /// The scene's pose of the body is that of the mesh's own frame; Bullet's body is placed at
-  /// pose * shapeFromBody (the principal frame of a dynamic mesh body).
+  /// The scene's pose of the body is that of the mesh's own frame (unless it places the
+  /// centre of mass: identity); Bullet's body is placed at pose * meshFromShape (the
+  /// principal frame of a dynamic mesh body).
   Pose meshFromShape;
   const TriangleMesh* display = nullptr;  ///< in the shape's frame
 };
 
 class BodyShapes {
  public:
-  BodyShapes(const Scene& scene, Backend backend);
+  /// `convex` makes the moving meshes' shapes under Backend::Convex.
+  BodyShapes(const Scene& scene, Backend backend, ConvexShapeMaker convex);
 
   /// The shape for body `index` of the scene (call once per body).
   BodyShape make(const BodySpec& body);
@@ -49,6 +51,7 @@ class BodyShapes {
 
   const Scene& m_scene;
   Backend m_backend;
+  ConvexShapeMaker m_convex;
   std::map<std::size_t, TriangleMesh> m_sources;  // per shape: read or generated, scaled
   std::map<std::pair<std::size_t, ShapeFrame>, std::shared_ptr<const MeshData>> m_data;
   std::map<std::pair<std::size_t, ShapeFrame>, btCollisionShape*> m_shared;  // GImpact/BVH

@@ -31,7 +31,7 @@ OverlapQueries::OverlapQueries(const Scene& scene, Backend backend) : m_budget(s
   m_settings.kMin = std::max(1, scene.world.kMin);
   m_settings.stopAtFirstHit = true;
   m_budgeted = backend == Backend::Adb && m_budget.kind != BudgetSpec::Kind::None;
-  m_adbQueries = backend != Backend::GImpact;
+  m_adbQueries = usesAdbShapes(backend);
 }
 
 PairAnswer OverlapQueries::meshPair(const btCollisionObject& a, const btCollisionObject& b,

@@ -14,7 +14,23 @@ using Json = nlohmann::ordered_json;
 constexpr const char* kStepColumns =
     "step,time,seconds,budget_use,mesh_pairs,cut_pairs,mean_confidence,worst_confidence,"
     "overlapping,events,contacts,penetration,probed_penetration,kinetic,energy,at_rest,"
-    "node_pairs,needed_node_pairs,from_scratch_node_pairs,other_node_pairs\n";
+    "node_pairs,needed_node_pairs,from_scratch_node_pairs,other_node_pairs,lost,"
+    "probed_relative,probed_mean,frame_us,contact_us,pairs,exact_pairs,quality_pairs,"
+    "exact_contacts,plausible_contacts,mean_completeness,worst_completeness,out_of_bounds,"
+    "out_of_bounds_relative\n";
+
+// The q-quantile of `v` (nearest rank below), 0 when empty.
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+double mean(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
 
 const std::string& bodyName(const SceneWorld& world, std::uint32_t i) {
   return world.scene().bodies.at(i).name;
@@ -47,6 +63,7 @@ Recorder::Recorder(const SceneWorld& world) {
   m_summary.bodies = b.bodies;
   m_summary.triangles = b.triangles;
   m_summary.buildSeconds = b.buildSeconds;
+  m_summary.worldBounds = world.scene().world.bounds.has_value();
   for (std::size_t i = 0; i < world.bodyCount(); ++i) m_summary.dynamicBodies += world.isDynamic(i);
 }
 
@@ -69,8 +86,9 @@ void Recorder::open(std::ofstream& stream, const std::string& name) {
   if (!stream) throw std::runtime_error("cannot write '" + file.string() + "'");
 }
 
-void Recorder::record(const SceneWorld& world, double probed) {
+void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
   const StepRecord& r = world.last();
+  const double probed = probe ? probe->depth : -1.0;
   RunSummary& s = m_summary;
   ++s.steps;
   m_stepSeconds += r.seconds;
@@ -85,7 +103,20 @@ void Recorder::record(const SceneWorld& world, double probed) {
   }
   s.maxPenetration = std::max(s.maxPenetration, r.penetration);
   m_penetration += r.penetration;
-  if (probed >= 0) s.maxProbedPenetration = std::max(s.maxProbedPenetration, probed);
+  if (probe) {
+    s.maxProbedPenetration = std::max(s.maxProbedPenetration, probe->depth);
+    m_probedMean += probe->meanDepth;
+    ++m_probes;
+  }
+  s.mostLost = std::max(s.mostLost, r.lost);
+  s.lostAtEnd = r.lost;
+  s.maxOutOfBounds = std::max(s.maxOutOfBounds, r.outOfBounds);
+  s.maxOutOfBoundsRelative = std::max(s.maxOutOfBoundsRelative, r.outOfBoundsRelative);
+  s.outOfBoundsAtEnd = r.outOfBounds;
+  s.exactContacts += r.frame.exactContacts;
+  s.plausibleContacts += r.frame.plausibleContacts;
+  m_stepMillis.push_back(1e3 * r.seconds);
+  m_pairMillis.push_back(1e-3 * r.frame.micros);
   s.atRestAtEnd = r.atRest;
   s.kineticAtEnd = r.kinetic;
   if (s.steps == 1) s.energyAtStart = r.energy;
@@ -98,7 +129,13 @@ void Recorder::record(const SceneWorld& world, double probed) {
             << r.contacts << ',' << r.penetration << ',' << probed << ',' << r.kinetic << ','
             << r.energy << ',' << r.atRest << ',' << r.frame.nodePairs << ','
             << r.frame.neededNodePairs << ',' << r.frame.fromScratchNodePairs << ','
-            << r.frame.otherNodePairs << '\n';
+            << r.frame.otherNodePairs << ',' << r.lost << ','
+            << (probe ? probe->relative : -1.0) << ',' << (probe ? probe->meanDepth : -1.0)
+            << ',' << r.frame.micros << ',' << r.frame.contactMicros << ',' << r.frame.pairs
+            << ',' << r.frame.exactPairs << ',' << r.frame.qualityPairs << ','
+            << r.frame.exactContacts << ',' << r.frame.plausibleContacts << ','
+            << r.frame.meanCompleteness << ',' << r.frame.worstCompleteness << ','
+            << r.outOfBounds << ',' << r.outOfBoundsRelative << '\n';
   }
   if (m_events.is_open()) {
     for (const OverlapEvent& e : world.events()) {
@@ -121,6 +158,10 @@ const RunSummary& Recorder::finish() {
     s.meanPenetration = m_penetration / s.steps;
   }
   if (m_confidenceSteps > 0) s.meanConfidence = m_confidence / m_confidenceSteps;
+  if (m_probes > 0) s.meanProbedPenetration = m_probedMean / m_probes;
+  s.p99StepMillis = percentile(m_stepMillis, 0.99);
+  s.meanPairMillis = mean(m_pairMillis);
+  s.p99PairMillis = percentile(m_pairMillis, 0.99);
   if (m_folder.empty()) return s;
   m_steps.flush();
   m_events.flush();
@@ -136,6 +177,11 @@ const RunSummary& Recorder::finish() {
                   {"build_seconds", s.buildSeconds},
                   {"mean_step_ms", s.meanStepMillis},
                   {"max_step_ms", s.maxStepMillis},
+                  {"p99_step_ms", s.p99StepMillis},
+                  {"mean_pair_ms", s.meanPairMillis},
+                  {"p99_pair_ms", s.p99PairMillis},
+                  {"exact_contacts", s.exactContacts},
+                  {"plausible_contacts", s.plausibleContacts},
                   {"mean_budget_use", s.meanBudgetUse},
                   {"mesh_pair_steps", s.meshPairSteps},
                   {"cut_pair_steps", s.cutPairSteps},
@@ -144,6 +190,12 @@ const RunSummary& Recorder::finish() {
                   {"max_penetration", s.maxPenetration},
                   {"mean_penetration", s.meanPenetration},
                   {"max_probed_penetration", s.maxProbedPenetration},
+                  {"mean_probed_penetration", s.meanProbedPenetration},
+                  {"most_lost", s.mostLost},
+                  {"lost_at_end", s.lostAtEnd},
+                  {"max_out_of_bounds", s.maxOutOfBounds},
+                  {"max_out_of_bounds_relative", s.maxOutOfBoundsRelative},
+                  {"out_of_bounds_at_end", s.outOfBoundsAtEnd},
                   {"at_rest_at_end", s.atRestAtEnd},
                   {"kinetic_at_end", s.kineticAtEnd},
                   {"energy_at_start", s.energyAtStart},

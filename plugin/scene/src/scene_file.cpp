@@ -208,6 +208,17 @@ WorldSpec readWorld(const Json& j, const std::string& file) {
   } else if (fronts != "node_pair_budget") {
     o.fail(o.at("fronts"), "'" + fronts + "' is not one of node_pair_budget, always, never");
   }
+  if (const Json* b = o.find("bounds")) {
+    Object bounds(*b, o.at("bounds"), file);
+    Aabb box;
+    box.lo = bounds.vec3At(bounds.require("min"), bounds.at("min"));
+    box.hi = bounds.vec3At(bounds.require("max"), bounds.at("max"));
+    if (!(box.lo.array() < box.hi.array()).all()) {
+      bounds.fail(bounds.at("max"), "must exceed 'min' on every axis");
+    }
+    bounds.finish();
+    w.bounds = box;
+  }
   if (const Json* b = o.find("budget")) {
     Object budget(*b, o.at("budget"), file);
     if (budget.has("micros") && budget.has("node_pairs")) {
@@ -263,6 +274,10 @@ ShapeSpec readShape(const std::string& name, const Json& j, const std::string& f
     if (!std::filesystem::is_regular_file(s.file, error)) {
       o.fail(o.at("file"), "no mesh file " + inQuotes(s.file.string()));
     }
+    if (o.has("size") && (o.has("scale") || o.has("recentre"))) {
+      o.fail(o.at("size"), "give either 'size' or 'scale' and 'recentre', not both");
+    }
+    s.size = o.number("size", 0.0, 1e-12, 1e12);
     s.scale = o.number("scale", 1.0, 1e-12, 1e12);
     s.recentre = o.boolean("recentre", true);
   } else if (kind == "generated") {
@@ -330,6 +345,16 @@ BodySpec readBody(std::size_t i, const Json& j, const Scene& scene, const std::s
   }
   if (it->kind == ShapeSpec::Kind::Plane && b.kind != BodySpec::Kind::Static) {
     o.fail(o.at("kind"), "a plane can only be static");
+  }
+  const std::string poseOf = o.string("pose_of", "mesh");
+  if (poseOf == "centre_of_mass") {
+    const bool mesh = it->kind == ShapeSpec::Kind::Mesh || it->kind == ShapeSpec::Kind::Generated;
+    if (b.kind != BodySpec::Kind::Dynamic || !mesh) {
+      o.fail(o.at("pose_of"), "only a dynamic mesh body has a centre of mass to place");
+    }
+    b.poseOf = BodySpec::PoseOf::CentreOfMass;
+  } else if (poseOf != "mesh") {
+    o.fail(o.at("pose_of"), inQuotes(poseOf) + " is not one of mesh, centre_of_mass");
   }
   b.pose = readPose(o);
   b.velocity = o.vec3("velocity", Vec3::Zero());

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "adb/bullet/dispatcher.h"
@@ -24,6 +25,7 @@ const char* toString(Backend backend) {
     case Backend::Adb: return "adb";
     case Backend::Exact: return "exact";
     case Backend::GImpact: return "gimpact";
+    case Backend::Convex: return "convex";
   }
   return "?";
 }
@@ -32,7 +34,8 @@ Backend parseBackend(const std::string& name) {
   if (name == "adb") return Backend::Adb;
   if (name == "exact") return Backend::Exact;
   if (name == "gimpact") return Backend::GImpact;
-  throw std::invalid_argument("unknown backend '" + name + "' (known: adb, exact, gimpact)");
+  if (name == "convex") return Backend::Convex;
+  throw std::invalid_argument("unknown backend '" + name + "' (known: adb, exact, gimpact, convex)");
 }
 
 std::string BuildReport::describe() const {
@@ -56,15 +59,6 @@ using Clock = std::chrono::steady_clock;
 using detail::poseOf;
 using detail::toBt;
 
-Pose compose(const Pose& a, const Pose& b) {
-  return Pose{a.rotation * b.rotation, a.rotation * b.translation + a.translation};
-}
-
-Pose inverse(const Pose& p) {
-  const Mat3 rt = p.rotation.transpose();
-  return Pose{rt, -(rt * p.translation)};
-}
-
 FrameSettings frameSettings(const Scene& scene, Backend backend) {
   FrameSettings f;
   const WorldSpec& w = scene.world;
@@ -78,6 +72,19 @@ FrameSettings frameSettings(const Scene& scene, Backend backend) {
   f.fronts = w.fronts;
   f.softenPlausible = scene.effects.softContacts;
   return f;
+}
+
+// The vertices the triangles use.
+std::vector<Vec3> verticesInUse(const TriangleMesh& mesh) {
+  std::vector<bool> used(mesh.vertices().size(), false);
+  for (const Triangle& t : mesh.triangles()) {
+    for (std::uint32_t v : t) used[v] = true;
+  }
+  std::vector<Vec3> out;
+  for (std::size_t v = 0; v < used.size(); ++v) {
+    if (used[v]) out.push_back(mesh.vertices()[v]);
+  }
+  return out;
 }
 
 // The radius of a sphere inside the body, for Bullet's swept-sphere CCD: a fifth of the
@@ -128,6 +135,9 @@ struct SceneWorld::Impl {
   std::vector<std::unique_ptr<btDefaultMotionState>> motionStates;  // kinematic, dynamics
   std::vector<detail::BodyShape> bodyShapes;
   std::vector<std::shared_ptr<const MeshData>> meshes;  // per body, nullptr for primitives
+  std::vector<double> bodySize;  // per body, its display mesh's box diagonal
+  // Per mesh, the vertices its triangles use (a file may hold others, anywhere): the probe's.
+  std::map<const MeshData*, std::vector<Vec3>> usedVertices;
   std::vector<const MotionSpec*> motion;  // per body: its motion, if kinematic with one
 
   int steps = 0;
@@ -147,12 +157,13 @@ struct SceneWorld::Impl {
   void moveBodies(double time);
   void stepOverlap();
   void stepCollision(double dt);
+  void measureBounds(StepRecord& r) const;
   double time() const { return steps * scene.world.timeStep; }
 };
 
 void SceneWorld::Impl::buildWorld() {
   const Effects& effects = scene.effects;
-  const bool adbDispatch = backend != Backend::GImpact && effects.kind != Effects::Kind::Overlap;
+  const bool adbDispatch = usesAdbShapes(backend) && effects.kind != Effects::Kind::Overlap;
   configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
   if (adbDispatch) {
     auto d = std::make_unique<Dispatcher>(configuration.get());
@@ -161,7 +172,7 @@ void SceneWorld::Impl::buildWorld() {
     dispatcher = std::move(d);
   } else {
     dispatcher = std::make_unique<btCollisionDispatcher>(configuration.get());
-    if (backend == Backend::GImpact) {
+    if (!usesAdbShapes(backend)) {
       registerGImpact(*dispatcher);
     } else {
       registerAlgorithms(*dispatcher, *configuration);  // exact, for the non-mesh pairs
@@ -196,7 +207,7 @@ void SceneWorld::Impl::buildWorld() {
 // shape's frame that origin is inverse(meshFromShape) applied to zero.
 void SceneWorld::Impl::hingeToWorld(btRigidBody& body, const BodySpec& spec,
                                     const Pose& meshFromShape) {
-  const Pose shapeFromMesh = inverse(meshFromShape);
+  const Pose shapeFromMesh = meshFromShape.inverse();
   const Vec3 pivot = shapeFromMesh.translation;
   const Vec3 axis = shapeFromMesh.rotation * (spec.pose.rotation.transpose() * spec.hinge);
   constraints.push_back(std::make_unique<btHingeConstraint>(body, toBt(pivot), toBt(axis)));
@@ -207,7 +218,9 @@ void SceneWorld::Impl::addBody(std::size_t i) {
   const BodySpec& spec = scene.bodies[i];
   const Effects& effects = scene.effects;
   detail::BodyShape shape = shapes->make(spec);
-  const btTransform at = toBt(compose(spec.pose, shape.meshFromShape));
+  // A pose that places the centre of mass is the shape's own: nothing to move.
+  if (spec.poseOf == BodySpec::PoseOf::CentreOfMass) shape.meshFromShape = Pose{};
+  const btTransform at = toBt(spec.pose * shape.meshFromShape);
   const double friction = effects.friction ? spec.friction : 0.0;
   const double restitution = effects.restitution ? spec.restitution : 0.0;
   std::unique_ptr<btCollisionObject> object;
@@ -269,6 +282,10 @@ void SceneWorld::Impl::addBody(std::size_t i) {
     world->addCollisionObject(object.get(), group, mask);
   }
   report.meshBodies += shape.mesh ? 1 : 0;
+  if (shape.mesh && !usedVertices.count(shape.mesh.get())) {
+    usedVertices.emplace(shape.mesh.get(), verticesInUse(shape.mesh->mesh));
+  }
+  bodySize.push_back(shape.display->bounds().extent().norm());
   meshes.push_back(shape.mesh);
   bodyShapes.push_back(shape);
   objects.push_back(std::move(object));
@@ -287,7 +304,7 @@ void SceneWorld::Impl::moveBodies(double t) {
     } else {
       continue;
     }
-    const btTransform at = toBt(compose(pose, bodyShapes[i].meshFromShape));
+    const btTransform at = toBt(pose * bodyShapes[i].meshFromShape);
     auto* rigid = btRigidBody::upcast(objects[i].get());
     if (rigid && rigid->getMotionState()) {
       rigid->getMotionState()->setWorldTransform(at);  // Bullet derives the velocity from it
@@ -339,13 +356,44 @@ void SceneWorld::Impl::stepCollision(double dt) {
   }
 }
 
-SceneWorld::SceneWorld(Scene scene, Backend backend) : m_impl(std::make_unique<Impl>()) {
+// Against world.bounds: the dynamic bodies lost (their centre out by more than a quarter of
+// their size: a body resting deep in a floor has its centre above the floor's top), and how
+// far any mesh body's vertex reaches out (into a bin's floor or walls), from the geometry.
+void SceneWorld::Impl::measureBounds(StepRecord& r) const {
+  if (!scene.world.bounds || !dynamics) return;
+  const Aabb& bounds = *scene.world.bounds;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (scene.bodies[i].kind != BodySpec::Kind::Dynamic) continue;
+    const Pose pose = poseOf(objects[i]->getWorldTransform());
+    const Vec3& c = pose.translation;
+    const Vec3 margin = Vec3::Constant(0.25 * bodySize[i]);
+    const bool inside = (c.array() >= (bounds.lo - margin).array()).all() &&
+                        (c.array() <= (bounds.hi + margin).array()).all();
+    r.lost += inside ? 0 : 1;
+    // A body farther inside than its size cannot reach out.
+    const Vec3 room = (c - bounds.lo).cwiseMin(bounds.hi - c);
+    if (!meshes[i] || room.minCoeff() > bodySize[i]) continue;
+    double out = 0.0;
+    for (const Vec3& x : usedVertices.at(meshes[i].get())) {
+      const Vec3 w = pose.apply(x);
+      out = std::max({out, (bounds.lo - w).maxCoeff(), (w - bounds.hi).maxCoeff()});
+    }
+    r.outOfBounds = std::max(r.outOfBounds, out);
+    if (bodySize[i] > 0) r.outOfBoundsRelative = std::max(r.outOfBoundsRelative, out / bodySize[i]);
+  }
+}
+
+SceneWorld::SceneWorld(Scene scene, Backend backend, ConvexShapeMaker convex)
+    : m_impl(std::make_unique<Impl>()) {
+  if (backend == Backend::Convex && !convex) {
+    throw std::invalid_argument("the convex backend needs a shape maker (ConvexShapeMaker)");
+  }
   Impl& s = *m_impl;
   const Clock::time_point start = Clock::now();
   s.scene = std::move(scene);
   s.backend = backend;
   s.buildWorld();
-  s.shapes = std::make_unique<detail::BodyShapes>(s.scene, backend);
+  s.shapes = std::make_unique<detail::BodyShapes>(s.scene, backend, std::move(convex));
   s.motion.assign(s.scene.bodies.size(), nullptr);
   for (const MotionSpec& m : s.scene.motions) s.motion[m.body] = &m;
   for (std::size_t i = 0; i < s.scene.bodies.size(); ++i) s.addBody(i);
@@ -388,6 +436,7 @@ const StepRecord& SceneWorld::step() {
     if (s.report.budget) s.record.budgetUse = budgetUse(s.scene.world.budget, s.record.frame);
   }
   if (s.dynamics) detail::measureDynamics(*s.dynamics, s.scene.world.gravity, s.record);
+  s.measureBounds(s.record);
   return s.record;
 }
 
@@ -406,7 +455,7 @@ Pose SceneWorld::bodyPose(std::size_t body) const {
 }
 
 Pose SceneWorld::scenePose(std::size_t body) const {
-  return compose(bodyPose(body), inverse(m_impl->bodyShapes.at(body).meshFromShape));
+  return bodyPose(body) * m_impl->bodyShapes.at(body).meshFromShape.inverse();
 }
 
 bool SceneWorld::isDynamic(std::size_t body) const {
@@ -418,14 +467,15 @@ const std::vector<CutPair>& SceneWorld::cutPairs() const { return m_impl->cutPai
 const std::vector<OverlapEvent>& SceneWorld::events() const { return m_impl->events; }
 const std::vector<OverlapPair>& SceneWorld::overlapping() const { return m_impl->overlapPairs; }
 
-double SceneWorld::probePenetration() const {
+PenetrationReport SceneWorld::probePenetration() const {
   const Impl& s = *m_impl;
   std::vector<ProbeBody> bodies;
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     if (!s.meshes[i] || !isDynamic(i)) continue;
-    bodies.push_back(ProbeBody{&s.meshes[i]->tree, &s.meshes[i]->mesh.vertices(), bodyPose(i)});
+    bodies.push_back(ProbeBody{&s.meshes[i]->tree, &s.usedVertices.at(s.meshes[i].get()),
+                               bodyPose(i)});
   }
-  return measurePenetration(bodies).depth;
+  return measurePenetration(bodies);
 }
 
 btCollisionWorld& SceneWorld::collisionWorld() { return *m_impl->world; }

@@ -44,6 +44,18 @@ struct Pose {
   static Pose fromQuaternion(const Eigen::Quaterniond& q, const Vec3& t) {
     return Pose{q.normalized().toRotationMatrix(), t};
   }
+
+  /// The point `x` (in this pose's local coordinates) in world coordinates.
+  Vec3 apply(const Vec3& x) const { return rotation * x + translation; }
+  /// This pose after `local`: world_from_local = (*this) * local.
+  Pose operator*(const Pose& local) const {
+    return Pose{rotation * local.rotation, rotation * local.translation + translation};
+  }
+  /// The inverse transform (the rotation's transpose: it must be orthonormal).
+  Pose inverse() const {
+    const Mat3 rt = rotation.transpose();
+    return Pose{rt, -(rt * translation)};
+  }
 };
 
 }  // namespace adb

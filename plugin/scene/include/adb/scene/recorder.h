@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "adb/scene/scene_world.h"
 
@@ -29,6 +30,10 @@ struct RunSummary {
   double buildSeconds = 0.0;
   double meanStepMillis = 0.0;
   double maxStepMillis = 0.0;
+  double p99StepMillis = 0.0;
+  double meanPairMillis = 0.0;  ///< adb's dispatcher: its pairs' time per step (FrameStats)
+  double p99PairMillis = 0.0;
+  std::uint64_t exactContacts = 0, plausibleContacts = 0;  ///< summed over the steps
   double meanBudgetUse = 0.0;        ///< 0 without a budget
   std::uint64_t meshPairSteps = 0;   ///< mesh-mesh pairs summed over the steps
   std::uint64_t cutPairSteps = 0;    ///< of those, cut by the budget
@@ -37,6 +42,15 @@ struct RunSummary {
   double maxPenetration = 0.0;       ///< deepest contact point of any step
   double meanPenetration = 0.0;      ///< each step's deepest, averaged
   double maxProbedPenetration = -1;  ///< from the geometry (probe), -1 when not probed
+  /// Each body's deepest penetration, averaged over the bodies and the probes; -1: no probe.
+  double meanProbedPenetration = -1;
+  bool worldBounds = false;          ///< the scene sets world.bounds (the next four apply)
+  int mostLost = 0;                  ///< bodies out of world.bounds, at the worst step
+  int lostAtEnd = 0;
+  /// StepRecord::outOfBounds: at the worst step (also over the body's size), and at the end.
+  double maxOutOfBounds = 0.0;
+  double maxOutOfBoundsRelative = 0.0;
+  double outOfBoundsAtEnd = 0.0;
   int dynamicBodies = 0;
   int atRestAtEnd = 0;
   double kineticAtEnd = 0.0;
@@ -54,8 +68,8 @@ class Recorder {
   /// Records into `folder` (created). Throws std::runtime_error naming a file it cannot write.
   Recorder(const SceneWorld& world, const std::filesystem::path& folder);
 
-  /// After each step. `probed`: the step's penetration from the geometry, or -1.
-  void record(const SceneWorld& world, double probed = -1.0);
+  /// After each step. `probe`: the step's penetration from the geometry, if measured.
+  void record(const SceneWorld& world, const PenetrationReport* probe = nullptr);
   /// Writes summary.json (with a folder) and returns the summary.
   const RunSummary& finish();
   const RunSummary& summary() const { return m_summary; }
@@ -68,6 +82,9 @@ class Recorder {
   RunSummary m_summary;
   double m_stepSeconds = 0.0, m_budgetUse = 0.0, m_confidence = 0.0, m_penetration = 0.0;
   int m_confidenceSteps = 0;
+  double m_probedMean = 0.0;
+  std::vector<double> m_stepMillis, m_pairMillis;
+  int m_probes = 0;
 };
 
 }  // namespace adb::scene

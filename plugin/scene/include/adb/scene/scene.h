@@ -5,11 +5,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/core/geometry.h"
+#include "adb/core/mesh.h"
 
 namespace adb::scene {
 
@@ -31,15 +34,23 @@ struct WorldSpec {
   double pAccept = 0.9;  ///< unresolved node pairs at or above this become plausible contacts
   /// Whether mesh-mesh pairs keep their fronts across steps (adb::FrameSettings::fronts).
   adb::FrameSettings::Fronts fronts = adb::FrameSettings::Fronts::WithNodePairBudget;
+  /// Where dynamic bodies belong (a bin's inside, say): a body whose centre is outside it by
+  /// more than a quarter of its size (its box's diagonal) is lost. None: no body is lost.
+  std::optional<Aabb> bounds;
 };
 
 struct ShapeSpec {
   enum class Kind { Mesh, Generated, Box, Sphere, Capsule, Plane } kind = Kind::Box;
   std::string name;
-  // Mesh: a file read through adb::io, scaled, and recentred on its bounding box's centre.
+  // Mesh: a file read through adb::io, or a mesh given in code (a scene built in code), then
+  // scaled and recentred on its bounding box's centre.
   std::filesystem::path file;  ///< absolute (resolved against the scene file's folder)
+  std::shared_ptr<const TriangleMesh> given;  ///< in place of a file when set
   double scale = 1.0;
   bool recentre = true;
+  /// > 0: scaled about its box's centre to this largest extent, in place of scale and
+  /// recentre (files come in any unit).
+  double size = 0.0;
   // Generated: one of generatedModelNames() (scene_models.h), about this many triangles,
   // then scaled. "gear" takes `teeth`; "box" takes halfExtents.
   std::string model;
@@ -58,6 +69,9 @@ struct BodySpec {
   std::string name;
   std::size_t shape = 0;  ///< index into Scene::shapes
   double mass = 1.0;      ///< dynamic bodies: > 0
+  /// What `pose` places: the mesh's own frame, or (dynamic mesh bodies) its centre of mass
+  /// and principal axes, as Bullet's body does.
+  enum class PoseOf { Mesh, CentreOfMass } poseOf = PoseOf::Mesh;
   Pose pose;
   Vec3 velocity = Vec3::Zero();
   Vec3 angularVelocity = Vec3::Zero();

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -23,9 +24,14 @@
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/core/mesh.h"
+#include "adb/scene/penetration_probe.h"
 #include "adb/scene/scene.h"
 
+class btCollisionShape;
 class btCollisionWorld;
+namespace adb {
+struct MeshData;
+}
 class btDiscreteDynamicsWorld;
 
 namespace adb::scene {
@@ -35,10 +41,24 @@ enum class Backend {
   Adb,      ///< adb's MeshShape under the scene's per-step budget
   Exact,    ///< adb's MeshShape with no budget: every pair exact
   GImpact,  ///< Bullet's btGImpactMeshShape (moving) and btBvhTriangleMeshShape (static)
+  /// Moving meshes decomposed into convex shapes by a ConvexShapeMaker (adb-demo's: Bullet's
+  /// HACD), static ones as btBvhTriangleMeshShape: the peer users prepare instead of adb.
+  Convex,
 };
 const char* toString(Backend backend);
-/// "adb", "exact" or "gimpact"; throws std::invalid_argument naming the value otherwise.
+/// "adb", "exact", "gimpact" or "convex"; throws std::invalid_argument naming the value
+/// otherwise.
 Backend parseBackend(const std::string& name);
+/// Whether the backend's meshes are adb's MeshShape (collided by adb's dispatcher).
+inline bool usesAdbShapes(Backend backend) {
+  return backend == Backend::Adb || backend == Backend::Exact;
+}
+
+/// Backend::Convex: a moving mesh's collision shape (in the mesh data's frame, its principal
+/// frame), made once per mesh and shared by its bodies. The world keeps every shape returned
+/// (a compound's children, say); the body's shape comes last.
+using ConvexShapeMaker =
+    std::function<std::vector<std::unique_ptr<btCollisionShape>>(const MeshData& mesh)>;
 
 /// What the runner built for the scene's effects.
 struct BuildReport {
@@ -108,6 +128,12 @@ struct StepRecord {
   double kinetic = 0.0;           ///< dynamics: kinetic energy of the dynamic bodies, J
   double energy = 0.0;            ///< dynamics: kinetic plus potential (gravity), J
   int atRest = 0;                 ///< dynamics: bodies slower than 0.05 m/s and 0.05 rad/s
+  int lost = 0;                   ///< dynamic bodies out of world.bounds (WorldSpec::bounds)
+  /// How far the deepest vertex of a dynamic mesh body reaches out of world.bounds (into a
+  /// bin's floor or a wall), from the geometry whatever the contacts say; >= 0. And the same
+  /// over that body's size (its box's diagonal), the worst body.
+  double outOfBounds = 0.0;
+  double outOfBoundsRelative = 0.0;
   FrameStats frame;               ///< adb backends, contacts and dynamics: the dispatcher's
 };
 
@@ -115,7 +141,8 @@ class SceneWorld {
  public:
   /// Builds the world: reads mesh files (adb::io), generates models, builds trees and shapes.
   /// Throws SceneError naming the shape of a mesh file that cannot be read.
-  SceneWorld(Scene scene, Backend backend);
+  /// Backend::Convex needs `convex` (std::invalid_argument otherwise); the others ignore it.
+  SceneWorld(Scene scene, Backend backend, ConvexShapeMaker convex = {});
   ~SceneWorld();
   SceneWorld(const SceneWorld&) = delete;
   SceneWorld& operator=(const SceneWorld&) = delete;
@@ -149,7 +176,7 @@ class SceneWorld {
   /// Body-body penetration measured from the geometry (adb/scene/penetration_probe.h),
   /// between dynamic mesh bodies, whatever the contacts say: the same measure for every
   /// backend. Slow: not part of a step's time.
-  double probePenetration() const;
+  PenetrationReport probePenetration() const;
 
   btCollisionWorld& collisionWorld();
   /// The dynamics world, or nullptr when the scene does not ask for dynamics.

@@ -1,0 +1,141 @@
+// The pile as scene data (makePileScene): every backend runs it, bodies start where the pile
+// puts their centres of mass, files are sized to 0.8 across, a body out of the bin is lost,
+// and the convex backend takes its shapes from the maker it is given.
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+#include "adb/bullet/mesh_shape.h"
+#include "adb/scene/pile_scene.h"
+#include "adb/scene/scene_file.h"
+#include "adb/scene/scene_world.h"
+#include "adb/support/mesh_generators.h"
+
+namespace adb::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+PileSpec smallPile(PileSpec::Floor floor) {
+  PileSpec spec;
+  spec.bodies = 6;
+  spec.trianglesPerBody = 400;
+  spec.floor = floor;
+  return spec;
+}
+
+TEST(PileScene, EveryFloorAndBackendRunsAndKeepsTheBodiesInTheBin) {
+  for (PileSpec::Floor floor : {PileSpec::Floor::Mesh, PileSpec::Floor::Box, PileSpec::Floor::Plane}) {
+    for (Backend backend : {Backend::Adb, Backend::Exact, Backend::GImpact}) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(floor)) + " " + toString(backend));
+      SceneWorld world(makePileScene(smallPile(floor)), backend);
+      EXPECT_EQ(world.bodyCount(), 5u + 6u);  // the bin's floor and four walls, the bodies
+      EXPECT_EQ(world.built().meshBodies, floor == PileSpec::Floor::Mesh ? 11 : 6);
+      for (int i = 0; i < 90; ++i) world.step();  // 1.5 s: the bodies fall 1 to 1.9 and land
+      EXPECT_EQ(world.last().lost, 0);
+      for (std::size_t b = 5; b < world.bodyCount(); ++b) {
+        const Vec3 c = world.bodyPose(b).translation;
+        EXPECT_GT(c.y(), -0.1);
+        EXPECT_LT(c.y(), 1.0);  // landed: no body is still up at its start (1.0 and above)
+        EXPECT_LT(c.cwiseAbs().x(), 2.5);
+        EXPECT_LT(c.cwiseAbs().z(), 2.5);
+      }
+    }
+  }
+}
+
+TEST(PileScene, ABodyStartsWithItsCentreOfMassWhereThePilePutsIt) {
+  const Scene scene = makePileScene(smallPile(PileSpec::Floor::Box));
+  SceneWorld world(scene, Backend::Adb);
+  for (std::size_t b = 5; b < world.bodyCount(); ++b) {
+    const BodySpec& spec = scene.bodies[b];
+    ASSERT_EQ(spec.poseOf, BodySpec::PoseOf::CentreOfMass);
+    // Bullet's body is its centre of mass: placed at the pose itself (to float rounding).
+    EXPECT_LT((world.bodyPose(b).translation - spec.pose.translation).norm(), 1e-6);
+    EXPECT_LT((world.bodyPose(b).rotation - spec.pose.rotation).norm(), 1e-6);
+    EXPECT_LT((world.scenePose(b).translation - spec.pose.translation).norm(), 1e-6);
+  }
+  // The grid: 3 x 3 per layer 0.9 apart, jittered by at most 0.1, the first layer at 1.
+  EXPECT_NEAR(scene.bodies[5].pose.translation.y(), 1.0, 1e-12);
+  EXPECT_NEAR(scene.bodies[5].pose.translation.x(), -0.9, 0.1);
+}
+
+TEST(PileScene, AMeshFileIsSizedToItsLargestExtentWhateverItsUnits) {
+  const fs::path dir = fs::temp_directory_path() / ("adb_pile_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    const TriangleMesh torus = gen::makeTorus(350, 120, 24, 12);  // millimetres, off-centre
+    std::ofstream obj(dir / "ring.obj");
+    for (const Vec3& v : torus.vertices()) obj << "v " << v.x() + 5000 << ' ' << v.y() << ' ' << v.z() << '\n';
+    for (const Triangle& t : torus.triangles()) obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  }
+  PileSpec spec = smallPile(PileSpec::Floor::Plane);
+  spec.meshes = {dir / "ring.obj"};
+  SceneWorld world(makePileScene(spec), Backend::Adb);
+  EXPECT_EQ(world.built().triangles, 6u * 24u * 12u * 2u);
+  EXPECT_NEAR(world.displayMesh(5).bounds().extent().maxCoeff(), 0.8, 1e-9);
+  spec.meshes = {dir / "missing.obj"};
+  EXPECT_THROW(SceneWorld(makePileScene(spec), Backend::Adb), SceneError);
+  fs::remove_all(dir);
+  spec.bodies = 0;
+  EXPECT_THROW(makePileScene(spec), std::invalid_argument);
+}
+
+// A ball dropped beside a floor, with bounds over the floor: lost once its centre is below
+// the bounds by more than a quarter of its size; a ball resting on the floor is not.
+TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
+  const Scene scene = parseScene(R"({
+      "world": {"bounds": {"min": [-1, 0, -1], "max": [1, 5, 1]}},
+      "shapes": {"floor": {"type": "box", "half_extents": [1, 0.25, 1]},
+                 "ball": {"type": "sphere", "radius": 0.1}},
+      "bodies": [{"name": "floor", "shape": "floor", "kind": "static", "position": [0, -0.25, 0]},
+                 {"name": "in", "shape": "ball", "position": [0, 0.5, 0]},
+                 {"name": "out", "shape": "ball", "position": [1.5, 0.5, 0]}],
+      "effects": ["dynamics"]})",
+                                 "bounds.json");
+  SceneWorld world(scene, Backend::Adb);
+  int firstLost = 0;
+  for (int step = 1; step <= 60; ++step) {
+    if (world.step().lost > 0 && firstLost == 0) firstLost = step;
+  }
+  EXPECT_EQ(world.last().lost, 1);  // "out" fell beside the floor; "in" rests on it
+  // Out on x from the start by 0.5, more than a quarter of the ball's box diagonal (0.087).
+  EXPECT_EQ(firstLost, 1);
+  EXPECT_NEAR(world.bodyPose(1).translation.y(), 0.1, 0.02);
+}
+
+TEST(PileScene, TheConvexBackendTakesItsShapesFromItsMakerOncePerMesh) {
+  const Scene scene = makePileScene(smallPile(PileSpec::Floor::Box));
+  EXPECT_THROW(SceneWorld(scene, Backend::Convex), std::invalid_argument);
+  int made = 0;
+  const ConvexShapeMaker boxes = [&made](const MeshData& mesh) {
+    ++made;
+    std::vector<std::unique_ptr<btCollisionShape>> shapes;
+    const Vec3 half = 0.5 * mesh.mesh.bounds().extent();
+    shapes.push_back(std::make_unique<btBoxShape>(
+        btVector3(static_cast<btScalar>(half.x()), static_cast<btScalar>(half.y()),
+                  static_cast<btScalar>(half.z()))));
+    return shapes;
+  };
+  SceneWorld world(scene, Backend::Convex, boxes);
+  EXPECT_EQ(made, 3);  // torus, gear, knot: shared by the six bodies
+  const btCollisionObjectArray& objects = world.collisionWorld().getCollisionObjectArray();
+  int boxBodies = 0;
+  for (int i = 0; i < objects.size(); ++i) {
+    boxBodies += objects[i]->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE &&
+                 !objects[i]->isStaticObject();
+  }
+  EXPECT_EQ(boxBodies, 6);
+  for (int i = 0; i < 60; ++i) world.step();
+  EXPECT_EQ(world.last().lost, 0);
+  EXPECT_EQ(parseBackend("convex"), Backend::Convex);
+}
+
+}  // namespace
+}  // namespace adb::scene
