@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "adb/bullet/conversions.h"
 #include "adb/bullet/mesh_shape.h"
 #include "scene_run/convex_decomposition.h"
 
@@ -14,11 +15,6 @@ namespace {
 // which would keep bodies apart by a visible gap and hide penetration from the probe); 0.01
 // is the margin GImpact's triangles get by default.
 constexpr double kHullMargin = 0.01;
-
-btVector3 toBt(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-                   static_cast<btScalar>(v.z()));
-}
 
 }  // namespace
 

@@ -188,7 +188,7 @@ bool ManifoldAlgorithm::acceptPoses(const btCollisionObjectWrapper* body0,
                                     const btCollisionObjectWrapper* body1) {
   bool usable = true;
   for (const btCollisionObjectWrapper* body : {body0, body1}) {
-    PoseDefect defect = poseDefect(detail::toPose(body->getWorldTransform()));
+    PoseDefect defect = poseDefect(toPose(body->getWorldTransform()));
     // A NaN velocity makes a NaN pose only when the step integrates it, after the solver
     // has carried it through this pair's contacts to the other body: refused the same way.
     if (defect == PoseDefect::None && !finiteVelocities(body->getCollisionObject())) {

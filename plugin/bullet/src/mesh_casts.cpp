@@ -25,8 +25,6 @@
 namespace adb {
 namespace {
 
-using detail::fromBt;
-using detail::toBt;
 
 // btTriangleRaycastCallback accepts a hit up to 1e-4 of the triangle's height beyond each
 // edge (its edge_tolerance); the height is at most the longest edge, at most sqrt(3) times

@@ -17,9 +17,6 @@
 namespace adb {
 namespace {
 
-using detail::fromBt;
-using detail::toBt;
-using detail::toPose;
 using detail::worldTriangle;
 
 // Intersecting triangle pairs turned into contacts per pair and step at most (the manifold

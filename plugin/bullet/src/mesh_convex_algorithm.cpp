@@ -30,9 +30,6 @@ namespace {
 constexpr int kContactRegionLevel = 4;
 constexpr double kDepthSlack = 1e-3;
 
-using detail::fromBt;
-using detail::toBt;
-using detail::toPose;
 
 // The convex shape in the tree's local frame, as the closed-form tests need it.
 struct LocalConvex {

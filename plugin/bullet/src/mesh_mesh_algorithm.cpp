@@ -16,7 +16,6 @@
 namespace adb {
 namespace {
 
-using detail::toPose;
 
 // Triangle pairs turned into contacts per pair and step at most: the manifold keeps 4 points
 // (Bullet's reduction picks the widest), so more would cost without changing the result much.

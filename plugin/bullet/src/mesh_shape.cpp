@@ -14,8 +14,6 @@
 namespace adb {
 namespace {
 
-using detail::fromBt;
-using detail::toBt;
 
 // The winding's sign from the signed volume (divergence theorem), taken about the box centre
 // so that a mesh far from the origin does not lose it to cancellation.

@@ -9,7 +9,7 @@
 #include "adb/io/message_text.h"
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_models.h"
-#include "bullet_conversions.h"
+#include "adb/bullet/conversions.h"
 
 namespace adb::scene::detail {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "bullet_conversions.h"
+#include "adb/bullet/conversions.h"
 
 namespace adb::scene::detail {
 namespace {
@@ -47,7 +47,7 @@ PairAnswer OverlapQueries::meshPair(const btCollisionObject& a, const btCollisio
     }
   }
   const QueryResult r =
-      collide(ma.tree, poseOf(a.getWorldTransform()), mb.tree, poseOf(b.getWorldTransform()),
+      collide(ma.tree, toPose(a.getWorldTransform()), mb.tree, toPose(b.getWorldTransform()),
               settings, m_scratch);
   m_microsLeft -= r.seconds * 1e6;
   m_nodePairsLeft -= std::min(m_nodePairsLeft, r.nodePairs);

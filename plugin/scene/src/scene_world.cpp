@@ -13,7 +13,7 @@
 #include "adb/bullet/registration.h"
 #include "adb/scene/penetration_probe.h"
 #include "body_shapes.h"
-#include "bullet_conversions.h"
+#include "adb/bullet/conversions.h"
 #include "kinematic_path.h"
 #include "overlap_queries.h"
 #include "world_measures.h"
@@ -56,8 +56,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-using detail::poseOf;
-using detail::toBt;
 
 FrameSettings frameSettings(const Scene& scene, Backend backend) {
   FrameSettings f;
@@ -364,7 +362,7 @@ void SceneWorld::Impl::measureBounds(StepRecord& r) const {
   const Aabb& bounds = *scene.world.bounds;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (scene.bodies[i].kind != BodySpec::Kind::Dynamic) continue;
-    const Pose pose = poseOf(objects[i]->getWorldTransform());
+    const Pose pose = toPose(objects[i]->getWorldTransform());
     const Vec3& c = pose.translation;
     const Vec3 margin = Vec3::Constant(0.25 * bodySize[i]);
     const bool inside = (c.array() >= (bounds.lo - margin).array()).all() &&
@@ -451,7 +449,7 @@ const TriangleMesh& SceneWorld::displayMesh(std::size_t body) const {
 }
 
 Pose SceneWorld::bodyPose(std::size_t body) const {
-  return poseOf(m_impl->objects.at(body)->getWorldTransform());
+  return toPose(m_impl->objects.at(body)->getWorldTransform());
 }
 
 Pose SceneWorld::scenePose(std::size_t body) const {

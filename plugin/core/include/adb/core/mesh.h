@@ -13,16 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "adb/core/errors.h"
 #include "adb/core/geometry.h"
 
 namespace adb {
-
-/// The one error type of the core for invalid input. what() names what is wrong and where
-/// (for example "triangle 17 references vertex 90, but the mesh has 64 vertices").
-class MeshError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
 
 using Triangle = std::array<std::uint32_t, 3>;
 

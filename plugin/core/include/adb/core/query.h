@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "adb/core/collision_estimate.h"
+#include "adb/core/errors.h"
 #include "adb/core/geometry.h"
 #include "adb/core/tree.h"
 
@@ -255,12 +256,6 @@ class QueryScratch {
   friend QueryResult collide(const AdbTree&, const Pose&, const AdbTree&, const Pose&,
                              const QuerySettings&, QueryScratch&);
   Traversal m_traversal;
-};
-
-/// Thrown for a pose with a non-finite entry or a rotation that is not orthonormal.
-class PoseError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
 };
 
 /// What makes a pose unusable, if anything: the checks collide() and Traversal::reset()

@@ -14,16 +14,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "adb/core/errors.h"
 #include "adb/core/geometry.h"
 #include "adb/core/mesh.h"
 
 namespace adb {
-
-/// Thrown for invalid build or query settings; the message names the setting and the range.
-class SettingsError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
 
 /// How pc (possible collision cells per node) is counted (paper §3.4).
 enum class CellCounting {
