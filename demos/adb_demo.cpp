@@ -18,7 +18,7 @@
 
 #include "adb/scene/pile_scene.h"
 #include "adb/scene/scene_file.h"
-#include "common/command_line.h"
+#include "shared/command_line.h"
 #include "scene_run/scene_run.h"
 
 namespace {

@@ -15,7 +15,7 @@
 #include "adb/support/mesh_generators.h"
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
-#include "common/command_line.h"
+#include "shared/command_line.h"
 
 namespace {
 

@@ -11,11 +11,11 @@
 #include "adb/scene/recorder.h"
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_world.h"
-#include "common/progress.h"
+#include "shared/progress.h"
 #include "render/png_file.h"
 #include "scene_run/convex_peer.h"
 #include "scene_run/movie.h"
-#include "scene_run/scene_picture.h"
+#include "render/scene_picture.h"
 
 namespace adb::demo {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "adb/support/mesh_generators.h"
-#include "common/pair_kind_scene.h"
+#include "shared/pair_kind_scene.h"
 
 namespace adb {
 namespace {

@@ -15,7 +15,7 @@
 #include "render/colour_map.h"
 #include "render/png_file.h"
 #include "render/rasterizer.h"
-#include "scene_run/scene_picture.h"
+#include "render/scene_picture.h"
 
 namespace adb::render {
 namespace {

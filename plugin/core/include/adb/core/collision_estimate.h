@@ -6,7 +6,7 @@
 // unresolved, so no open pair is nested in another; its Eq. 3 bounds and its Pr[X >= 1]
 // summarise the model's belief about that remainder. Pairs near each other are not
 // independent, and Eq. 3 is a bound, not a probability, so the summary goes through a
-// logistic model fitted on generated meshes (demos/calibrate, docs/probability-model.md):
+// logistic model fitted on generated meshes (studies/calibrate, docs/probability-model.md):
 // P(collision) = sigmoid(w . features). Its weights on the evidence are non-negative, so more
 // evidence for a collision never lowers P.
 #pragma once

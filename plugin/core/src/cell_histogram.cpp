@@ -1,5 +1,5 @@
-// Fig. 8 histogram over a built ADB-tree, with the core's internal grid and clipping helpers.
-#include "cell_histogram.h"
+// The paper's Fig. 8 histogram over a built tree, with the tree's own grid and clipping.
+#include "adb/core/cell_histogram.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,13 +7,10 @@
 #include <vector>
 
 #include "cell_grid.h"
-#include "csv_format.h"
 #include "node_geometry.h"
 #include "tree_builder.h"
 
-namespace adb::tradeoff {
-
-const char* const kCellsCsvHeader = "model,triangles,cell,count";
+namespace adb {
 
 namespace {
 
@@ -84,11 +81,4 @@ CellHistogram cellHistogram(const AdbTree& tree, std::uint64_t maxWork) {
   return h;
 }
 
-void writeCellRows(std::ostream& out, const std::string& model, std::size_t triangles,
-                   const CellHistogram& histogram) {
-  for (std::size_t c = 0; c < kCells; ++c) {
-    out << csvField(model) << ',' << triangles << ',' << c << ',' << histogram.count[c] << '\n';
-  }
-}
-
-}  // namespace adb::tradeoff
+}  // namespace adb

@@ -10,7 +10,7 @@
 
 #include "method.h"
 #include "options.h"
-#include "common/progress.h"
+#include "shared/progress.h"
 #include "query_csv.h"
 #include "results.h"
 

@@ -6,7 +6,7 @@
 // (every query, poses at full precision), summary.csv / summary.md (per model, method and
 // parameters; the budgets that reach 5 % and 1 % error), reliability.csv (calibration of
 // the confidences), cells.csv (the paper's Fig. 8) and, through
-// demos/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
+// studies/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
 // docs/benchmark.md. Timing policy: timing.h (also in --help).
 //
 // Exit status: 0 done, 2 usage error (nothing run), 1 input error (a mesh that cannot be
@@ -24,7 +24,7 @@
 #include "model_loader.h"
 #include "options.h"
 #include "plots.h"
-#include "common/progress.h"
+#include "shared/progress.h"
 #include "query_csv.h"
 #include "report.h"
 #include "study.h"

@@ -303,7 +303,7 @@ void addRunFlags(CLI::App& app, Options& o) {
       o.outDir);
   // A plain switch: "--no-plots=false" would read as a double negative.
   app.add_flag_callback("--no-plots", [&o] { o.plots = false; },
-                        "do not run demos/tradeoff/plot_tradeoff.py")
+                        "do not run studies/tradeoff/plot_tradeoff.py")
       ->disable_flag_override();
 }
 

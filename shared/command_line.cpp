@@ -1,5 +1,5 @@
 // Strict option values and the CLI11 parse shared by the demos (command_line.h).
-#include "common/command_line.h"
+#include "shared/command_line.h"
 
 #include <CLI/CLI.hpp>
 

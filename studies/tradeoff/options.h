@@ -1,7 +1,7 @@
 // The command line of adb-tradeoff: what to measure (models, distances, rotations, methods,
 // ADB parameter sweeps), where to write it, and the strict parsing of every value (numbers,
 // lists, ranges a:b:step) with one clear error naming the flag and the value. CLI11 reads
-// the flags (demos/common/command_line.h).
+// the flags (shared/command_line.h).
 #pragma once
 
 #include <cstddef>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/command_line.h"
+#include "shared/command_line.h"
 
 namespace adb::tradeoff {
 

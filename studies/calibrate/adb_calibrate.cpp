@@ -36,7 +36,7 @@
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
 #include "adb/io/mesh_file.h"
-#include "common/command_line.h"
+#include "shared/command_line.h"
 #include "tradeoff/calibration.h"
 
 namespace {
@@ -230,7 +230,7 @@ adb::EstimateWeights fit(const std::vector<ModelSamples>& models, bool evidenceS
 // Expected calibration error of the answers the estimate gives (the more probable side, with
 // its probability as confidence), 10 equal bins.
 double ece(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
-  // The study's binning and ECE (demos/tradeoff/calibration.h), so that both tools' figures
+  // The study's binning and ECE (studies/tradeoff/calibration.h), so that both tools' figures
   // mean the same; 0 rather than NaN for no samples, as the table prints numbers.
   std::vector<adb::tradeoff::JudgedAnswer> answers;
   answers.reserve(samples.size());

@@ -16,7 +16,7 @@ extern char** environ;
 namespace adb::tradeoff {
 
 #ifndef ADB_TRADEOFF_PLOT_SCRIPT
-#define ADB_TRADEOFF_PLOT_SCRIPT "demos/tradeoff/plot_tradeoff.py"
+#define ADB_TRADEOFF_PLOT_SCRIPT "studies/tradeoff/plot_tradeoff.py"
 #endif
 
 std::string plotScriptPath() { return ADB_TRADEOFF_PLOT_SCRIPT; }

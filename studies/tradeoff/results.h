@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "adb/core/cell_histogram.h"
 #include "method.h"
 
 namespace adb::tradeoff {
@@ -23,16 +24,6 @@ struct MethodRecords {
   std::string name;
   MethodParams params;
   std::vector<QueryRecord> queries;  ///< indexed like ModelResult::distance
-};
-
-/// The paper's Fig. 8: per cell index (x + 8y + 64z of an 8^3 grid over a node's box), the
-/// number of nodes for which that cell is a possible collision cell.
-struct CellHistogram {
-  std::array<std::uint64_t, 512> count{};
-  std::size_t nodesCounted = 0;
-  std::size_t nodesTotal = 0;
-  std::size_t stride = 1;  ///< 1: every node; s > 1: every s-th node per level, counts scaled
-  double seconds = 0.0;
 };
 
 struct ModelResult {

@@ -1,4 +1,4 @@
-#include "scene_run/scene_picture.h"
+#include "render/scene_picture.h"
 
 #include <algorithm>
 

@@ -18,7 +18,7 @@ quarter_seeds.csv (1/4 budget against exact, per seed), sweep.md (the tables),
 penetration.png and time.png. Progress goes to stderr. Runs already in --out with the same
 command are reused (--rerun repeats them).
 
-    /usr/bin/python3 demos/budget_sweep/budget_sweep.py --out out/budget-sweep
+    /usr/bin/python3 studies/budget_sweep/budget_sweep.py --out out/budget-sweep
 """
 
 import argparse

@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "adb/support/mesh_generators.h"
-#include "common/pair_kind_scene.h"
+#include "shared/pair_kind_scene.h"
 
 namespace {
 

@@ -28,8 +28,8 @@
 #include "adb/bullet/dispatcher.h"
 #include "adb/bullet/mesh_shape.h"
 #include "adb/support/mesh_generators.h"
-#include "common/command_line.h"
-#include "common/progress.h"
+#include "shared/command_line.h"
+#include "shared/progress.h"
 
 namespace {
 

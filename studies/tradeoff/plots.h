@@ -1,4 +1,4 @@
-// Running the plotting script (demos/tradeoff/plot_tradeoff.py, written separately) on the
+// Running the plotting script (studies/tradeoff/plot_tradeoff.py, written separately) on the
 // output directory. The CSVs are the result: a missing script, python3 or matplotlib only
 // gives a warning.
 #pragma once
