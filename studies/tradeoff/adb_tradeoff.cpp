@@ -5,7 +5,7 @@
 // box-first search, the root boxes alone), all on the same poses, and writes queries.csv
 // (every query, poses at full precision), summary.csv / summary.md (per model, method and
 // parameters; the budgets that reach 5 % and 1 % error), reliability.csv (calibration of
-// the confidences), cells.csv (the paper's Fig. 8) and, through
+// the confidences), cells.csv (the paper's Fig. 8), distances.csv (Figs. 9 and 10, judged) and, through
 // studies/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
 // docs/benchmark.md. Timing policy: timing.h (also in --help).
 //
@@ -86,7 +86,7 @@ int run(const Options& o) {
   }
   progress.finish();
   std::fprintf(stderr, "adb-tradeoff: wrote %s/{queries.csv,summary.csv,summary.md,reliability.csv,"
-               "cells.csv}\n",
+               "cells.csv,distances.csv}\n",
                o.outDir.c_str());
   if (o.plots) runPlotScript(o.outDir);
   return 0;

@@ -295,7 +295,7 @@ void addRunFlags(CLI::App& app, Options& o) {
   demo::addValueOption(
       app, "--out", "DIR",
       "output directory: queries.csv, summary.csv, summary.md,\n"
-      "reliability.csv, cells.csv, plots",
+      "reliability.csv, cells.csv, distances.csv, plots",
       [&o](const std::string& value) {
         if (value.empty()) failValue("--out", value, "empty directory name");
         o.outDir = value;

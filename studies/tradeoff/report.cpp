@@ -1,4 +1,4 @@
-// Writing the summary and cell-histogram files.
+// Writing the summary, reliability, cell-histogram and per-distance files.
 #include "report.h"
 
 #include <cstdio>
@@ -7,6 +7,7 @@
 
 #include "budgets.h"
 #include "cell_histogram.h"
+#include "distances.h"
 #include "machine_note.h"
 #include "reliability.h"
 #include "summary.h"
@@ -68,6 +69,7 @@ void writeReports(const Options& options, const std::vector<ModelResult>& done) 
                        budgetsSection(perModel));
   writeReliabilityCsv(path(options, "reliability.csv"), done);
   writeCells(path(options, "cells.csv"), done);
+  writeDistancesCsv(path(options, "distances.csv"), done);
 }
 
 }  // namespace adb::tradeoff

@@ -1,5 +1,5 @@
 // The files written from the finished models' results: summary.csv, summary.md (with its
-// Budgets section), reliability.csv and cells.csv. Rewritten in full after every model, so
+// Budgets section), reliability.csv, cells.csv and distances.csv. Rewritten in full after every model, so
 // that they always describe exactly the models completed so far (a later failure keeps them).
 #pragma once
 
