@@ -110,7 +110,7 @@ void Rasterizer::drawMesh(const std::vector<Vec3>& vertices,
                           const Pose& pose, Rgb colour) {
   std::vector<Vec3> camera(vertices.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) {
-    camera[i] = toCamera(pose.rotation * vertices[i] + pose.translation);
+    camera[i] = toCamera(pose.apply(vertices[i]));
   }
   for (const auto& t : triangles) {
     if (t[0] >= camera.size() || t[1] >= camera.size() || t[2] >= camera.size()) continue;

@@ -54,7 +54,7 @@ render::Camera sceneCamera(const scene::SceneWorld& world) {
     for (int c = 0; c < 8; ++c) {
       const Vec3 corner((c & 1) ? box.hi.x() : box.lo.x(), (c & 2) ? box.hi.y() : box.lo.y(),
                         (c & 4) ? box.hi.z() : box.lo.z());
-      bounds.grow(pose.rotation * corner + pose.translation);
+      bounds.grow(pose.apply(corner));
     }
   }
   if (!(bounds.lo.array() <= bounds.hi.array()).all()) bounds = Aabb{Vec3::Zero(), Vec3::Zero()};

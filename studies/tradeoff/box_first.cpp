@@ -127,8 +127,8 @@ void BoxFirstMethod::prepare(const Model& model) {
 
 BoxFirstMethod::Frame BoxFirstMethod::frameBetween(const Pose& a, const Pose& b) const {
   // World placement of the tree's local frame: world = R (x_local + origin) + t.
-  const Vec3 ta = a.rotation * m_tree->origin() + a.translation;
-  const Vec3 tb = b.rotation * m_tree->origin() + b.translation;
+  const Vec3 ta = a.apply(m_tree->origin());
+  const Vec3 tb = b.apply(m_tree->origin());
   // Exact inverses, not transposes: study poses are orthonormal only to rounding, and the
   // two directions must describe the same placement.
   const Mat3 worldToA = a.rotation.inverse();

@@ -11,8 +11,8 @@ bool rootBoxesOverlap(const Aabb& box, const Pose& a, const Pose& b) {
   const Vec3 centre = box.center();
   // B's orientation and centre in A's frame.
   const Mat3 r = a.rotation.transpose() * b.rotation;
-  const Vec3 worldA = a.rotation * centre + a.translation;
-  const Vec3 worldB = b.rotation * centre + b.translation;
+  const Vec3 worldA = a.apply(centre);
+  const Vec3 worldB = b.apply(centre);
   const Vec3 t = a.rotation.transpose() * (worldB - worldA);
   // The epsilon keeps near-parallel edge pairs (cross product ~0) from separating wrongly.
   const Mat3 absR = r.cwiseAbs().array() + 1e-12;

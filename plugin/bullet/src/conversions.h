@@ -9,8 +9,7 @@ namespace adb::detail {
 /// A tree-order triangle of a posed tree, in world coordinates.
 inline void worldTriangle(const AdbTree& tree, const Pose& pose, std::uint32_t t, Vec3 out[3]) {
   for (int k = 0; k < 3; ++k) {
-    out[k] = pose.rotation * (tree.localVertices()[tree.triangles()[t][k]] + tree.origin()) +
-             pose.translation;
+    out[k] = pose.apply(tree.localVertices()[tree.triangles()[t][k]] + tree.origin());
   }
 }
 

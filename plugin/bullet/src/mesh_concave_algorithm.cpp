@@ -39,7 +39,7 @@ struct TriangleVsMesh : public btTriangleCallback {
     Vec3 other[3];
     Aabb box;  // the other triangle's box in the mesh's coordinates
     for (int k = 0; k < 3; ++k) {
-      other[k] = otherPose.rotation * fromBt(corners[k]) + otherPose.translation;
+      other[k] = otherPose.apply(fromBt(corners[k]));
       box.grow(worldToMesh * (other[k] - meshPose.translation));
     }
     forEachTriangleNear(*tree, box, [&](std::uint32_t t) {

@@ -58,8 +58,7 @@ std::shared_ptr<const MeshData> buildData(TriangleMesh mesh, const BuildSettings
     mass.centerOfMass = Vec3::Zero();
     mass.inertia = mass.principalMoments.asDiagonal();
     mass.principalAxes = Mat3::Identity();
-    offset = Pose{meshFromShape.rotation * p.rotation,
-                  meshFromShape.rotation * p.translation + meshFromShape.translation};
+    offset = meshFromShape * p;
   }
   AdbTree tree(mesh, settings);
   return std::make_shared<const MeshData>(

@@ -39,7 +39,7 @@ constexpr double kDefaultContactErp = 0.8;
 
 Vec3 toWorldPoint(const Pose& pose, const AdbTree& tree, const float local[3]) {
   const Vec3 p(local[0], local[1], local[2]);
-  return pose.rotation * (p + tree.origin()) + pose.translation;
+  return pose.apply(p + tree.origin());
 }
 
 Vec3 toWorldDirection(const Pose& pose, const float local[3]) {

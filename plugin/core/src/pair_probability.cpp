@@ -67,8 +67,8 @@ bool slabOverlaps(const PosedNode& self, const PosedNode& other, double slack) {
 RelativeFrame RelativeFrame::between(const AdbTree& a, const Pose& poseA, const AdbTree& b,
                                      const Pose& poseB) {
   // World placement of each tree's local frame: world = R x_local + (R origin + t).
-  const Vec3 ta = poseA.rotation * a.origin() + poseA.translation;
-  const Vec3 tb = poseB.rotation * b.origin() + poseB.translation;
+  const Vec3 ta = poseA.apply(a.origin());
+  const Vec3 tb = poseB.apply(b.origin());
   RelativeFrame f;
   // world -> A is the inverse of A's rotation; exact inverses keep the frame consistent for
   // rotations that are orthonormal only to the pose tolerance.

@@ -57,7 +57,7 @@ Aabb toWorld(const ProbeBody& body, std::vector<Vec3>& world) {
   world.clear();
   world.reserve(body.vertices->size());
   for (const Vec3& v : *body.vertices) {
-    world.push_back(body.pose.rotation * v + body.pose.translation);
+    world.push_back(body.pose.apply(v));
     box.grow(world.back());
   }
   return box;

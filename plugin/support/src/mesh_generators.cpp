@@ -74,7 +74,7 @@ class Builder {
   void append(const Builder& part, const Pose& pose) {
     const std::uint32_t base = vertexCount();
     for (const Vec3& v : part.m_vertices) {
-      m_vertices.push_back(pose.rotation * v + pose.translation);
+      m_vertices.push_back(pose.apply(v));
     }
     for (const Triangle& t : part.m_triangles) triangle(base + t[0], base + t[1], base + t[2]);
   }
@@ -754,7 +754,7 @@ TriangleMesh merge(const std::vector<TriangleMesh>& meshes, const std::string& n
 TriangleMesh transformed(const TriangleMesh& mesh, const Pose& pose) {
   std::vector<Vec3> vertices;
   vertices.reserve(mesh.vertices().size());
-  for (const Vec3& v : mesh.vertices()) vertices.push_back(pose.rotation * v + pose.translation);
+  for (const Vec3& v : mesh.vertices()) vertices.push_back(pose.apply(v));
   return TriangleMesh(std::move(vertices), mesh.triangles(), mesh.name());
 }
 
