@@ -1,4 +1,6 @@
-// FrameScheduler: one step's budget spent across its adb pairs, then their contacts.
+// FrameScheduler: the policy that spends one step's budget across its adb pairs, then writes
+// their contacts. What the work costs is FrameCostModel's, what the step did is counted by
+// frame_statistics.h.
 #include "frame_scheduler.h"
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
@@ -7,22 +9,20 @@
 #include <cmath>
 #include <limits>
 
+#include "frame_statistics.h"
 #include "manifold_algorithm.h"
 #include "mesh_mesh_algorithm.h"
 
 namespace adb::detail {
 namespace {
 
-// The smallest first grant: a few levels of both trees. Smaller grants would mostly need a
-// second query; larger ones starve the other pairs of a tight budget.
-constexpr std::uint64_t kFirstGrant = 256;
+// The smallest first grant (kFirstGrant, frame_cost_model.h): a few levels of both trees.
+// Smaller grants would mostly need a second query; larger ones starve the other pairs of a
+// tight budget.
 // A refinement gets at least this many node pairs more: doubling from tiny grants would
 // spend the step on the queries' fixed costs (and, best first, on restarts).
 constexpr std::uint64_t kMinGrowth = 64;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
-// What a whole pair (mesh against a convex shape, a plane, ...) never run is expected to
-// cost: a few nodes and triangles, so that a tight budget is not overrun at first contact.
-constexpr std::uint64_t kFirstWholeWork = 128;
 // Steps a whole pair that costs more than the whole budget may be skipped in a row before it
 // runs regardless: two kept steps hold a resting body; a budget smaller than one pair
 // overruns by that pair every third step rather than letting the body fall.
@@ -30,23 +30,6 @@ constexpr std::uint64_t kMaxSkippedSteps = 2;
 // A pair with the world whose mesh moved less than this fraction of its contact breaking
 // threshold since it last ran may keep its contacts under a binding budget.
 constexpr btScalar kRestingMotion = btScalar(0.25);
-// Smoothing of the measured costs (time per node pair, contact time per pair): recent steps
-// count most, one odd step does not swing the next step's shares.
-constexpr double kSmoothing = 0.2;
-// The overshoot margin (updateMargin): its decay per step within budget, and its floor and
-// cap. The floor covers what even a perfect estimate overruns by: the last query's clock
-// interval and leaf pair, the spread of the cut pairs' contact writing; part of it is fixed
-// (100 us took the pile's p99 at 16 and 12 ms from 0.15 % over the budget to within it).
-constexpr double kMarginDecay = 0.99;
-constexpr double kMinMargin = 0.02;
-constexpr double kMinMarginMicros = 100.0;
-constexpr double kMaxMargin = 0.25;
-
-// The margin's floor: 2 % of the budget and 100 us, at most the cap (small budgets).
-double minMargin(double budgetMicros) {
-  return std::min(kMinMargin * budgetMicros + kMinMarginMicros, kMaxMargin * budgetMicros);
-}
-
 // A quality target needs the paper's best-first traversal; contacts alone are found faster
 // depth first (docs/bullet-budget.md).
 bool bestFirst(const FrameSettings& s) { return s.kMin > 0; }
@@ -75,12 +58,6 @@ double doubtOf(const std::vector<OpenPair>& open) {
   double doubt = 0.0;
   for (const OpenPair& o : open) doubt += static_cast<double>(o.upper);
   return std::min(1.0, doubt);
-}
-
-// What a pair is expected to cost: its last cost and a quarter more (bodies settling into
-// each other touch more triangles step by step), at least `least`.
-std::uint64_t expectedCost(std::uint64_t last, std::uint64_t least) {
-  return std::max(last + last / 4, least);
 }
 
 }  // namespace
@@ -166,7 +143,7 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
   writeContacts(settings);
   keepSkipped();
   m_stats.micros = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
-  updateMargin(settings);
+  m_costs.updateMargin(m_stats.micros, settings.budgetMicros);
 }
 
 std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
@@ -180,22 +157,11 @@ double FrameScheduler::microsLeft(const FrameSettings& s, bool holdBackWrites) c
   // The contact writing still to come is part of the step: its expected cost is held back.
   // A pair not queried yet will most likely be decided and written at once; one the budget
   // cut is written at the end, and costs more (more witnesses, its plausible contacts).
-  const double contacts = holdBackWrites ? m_writeMicros * static_cast<double>(m_unqueried) +
-                                               m_lateWriteMicros * static_cast<double>(m_undecided)
-                                         : 0.0;
-  const double margin = std::max(m_margin, minMargin(s.budgetMicros));
-  return std::max(0.0, s.budgetMicros - margin - contacts - used);
-}
-
-// The margin held back from a time budget: a step's whole overshoot is added to it, and it
-// decays by kMarginDecay per step that stays within. The overshoot (the last query's clock
-// interval, contact writing slower than its average) varies from step to step: a margin
-// that followed its mean would leave half the steps over budget; this one follows its peaks.
-void FrameScheduler::updateMargin(const FrameSettings& s) {
-  if (std::isinf(s.budgetMicros)) return;
-  const double over = m_stats.micros - s.budgetMicros;
-  m_margin = over > 0.0 ? m_margin + over : m_margin * kMarginDecay;
-  m_margin = std::clamp(m_margin, minMargin(s.budgetMicros), kMaxMargin * s.budgetMicros);
+  const double contacts =
+      holdBackWrites ? m_costs.writeMicros() * static_cast<double>(m_unqueried) +
+                           m_costs.lateWriteMicros() * static_cast<double>(m_undecided)
+                     : 0.0;
+  return std::max(0.0, s.budgetMicros - m_costs.margin(s.budgetMicros) - contacts - used);
 }
 
 // A pair's even share of what is left, in node pairs. A time budget is shared as node pairs
@@ -207,14 +173,14 @@ std::uint64_t FrameScheduler::share(const FrameSettings& s, std::uint64_t waitin
   if (left != kUnlimited) left /= waiting;
   const double micros = microsLeft(s);
   if (!std::isinf(micros)) {
-    const double byTime = micros / m_microsPerNodePair / static_cast<double>(waiting);
+    const double byTime = micros / m_costs.microsPerNodePair() / static_cast<double>(waiting);
     left = std::min(left, static_cast<std::uint64_t>(std::max(0.0, byTime)));
   }
   return left;
 }
 
-std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, double micros,
-                                    const FrameSettings& settings, bool resume, bool starved) {
+std::uint64_t FrameScheduler::query(DeferredPair& pair, const QueryRequest& request,
+                                    const FrameSettings& settings) {
   QuerySettings q;
   if (bestFirst(settings)) {
     q.mode = QueryMode::Adb;
@@ -231,20 +197,18 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
     // others keep the trees' order: a budget that never cuts a pair changes nothing (the
     // same simulation as no budget), and resting contacts sample the same triangle pairs
     // step after step.
-    q.descent = starved || pair.meshMesh().cut() ? ExactDescent::DeepestFirst
-                                                 : ExactDescent::TreeOrder;
+    q.descent = request.starved || pair.meshMesh().cut() ? ExactDescent::DeepestFirst
+                                                         : ExactDescent::TreeOrder;
   }
   q.keepFront = keepsFronts(settings);  // exact mode only: the core ignores it otherwise
   StepBudget budget;
-  if (!unbudgeted(settings)) budget = StepBudget{grant, micros};
-  const QueryResult& r = pair.meshMesh().query(pair, q, budget, resume);
+  if (!unbudgeted(settings)) budget = StepBudget{request.grant, request.micros};
+  const QueryResult& r = pair.meshMesh().query(pair, q, budget, request.resume);
   const StepWork& work = pair.meshMesh().lastStep();
-  if (work.nodePairs >= kFirstGrant && work.seconds > 0.0) {  // long enough to measure
-    const double perPair = work.seconds * 1e6 / static_cast<double>(work.nodePairs);
-    m_microsPerNodePair += kSmoothing * (perPair - m_microsPerNodePair);
-  }
+  m_costs.measureQuery(work.nodePairs, work.seconds);
   // Total granted this step: a resumed query adds to what it had.
-  if (!resume) {
+  const std::uint64_t grant = request.grant;
+  if (!request.resume) {
     pair.grant = grant;
   } else {
     pair.grant = grant <= kUnlimited - pair.grant ? pair.grant + grant : kUnlimited;
@@ -270,15 +234,6 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, std::uint64_t grant, dou
   return work.nodePairs + work.triangleTests + work.pairsPopped;
 }
 
-// A whole pair's expected time: its last and a quarter more, or, never timed, its expected
-// work at the measured time per unit (a GJK pair costs far more per unit than a closed-form
-// one: its own time is the better estimate).
-double FrameScheduler::expectedWholeMicros(const ManifoldAlgorithm& algorithm) const {
-  if (algorithm.lastMicros() > 0.0) return 1.25 * algorithm.lastMicros();
-  return static_cast<double>(expectedCost(algorithm.lastWork(), kFirstWholeWork)) *
-         m_microsPerWholeUnit;
-}
-
 // Whether the budget is too small for every pair's expected cost: only then may a resting
 // pair keep its contacts (a budget never reached must not change the simulation).
 bool FrameScheduler::binding(const FrameSettings& settings) const {
@@ -287,12 +242,12 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
   double micros = 0.0;
   for (const DeferredPair& p : m_wholes) {
     units += expectedCost(p.algorithm->lastWork(), kFirstWholeWork);
-    micros += expectedWholeMicros(*p.algorithm);
+    micros += m_costs.expectedWholeMicros(*p.algorithm);
   }
   for (const DeferredPair& p : m_pairs) {
     const std::uint64_t cost = expectedCost(p.meshMesh().needed(), kFirstGrant);
     units += cost;
-    micros += static_cast<double>(cost) * m_microsPerNodePair + m_writeMicros;
+    micros += static_cast<double>(cost) * m_costs.microsPerNodePair() + m_costs.writeMicros();
   }
   return units > settings.budgetNodePairs || micros > settings.budgetMicros;
 }
@@ -346,7 +301,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
       const std::uint64_t wanted = expectedCost(last, kFirstGrant);
       const std::uint64_t grant = std::min(wanted, share(settings, waiting));
       // The time cap is what is left of the step: the share is in the grant.
-      query(pair, grant, microsLeft(settings), settings, false, grant < wanted);
+      query(pair, QueryRequest{grant, microsLeft(settings), false, grant < wanted}, settings);
       --m_unqueried;
       // A decided pair's contacts are final: written now, their time is measured rather
       // than estimated by the time the budget runs out.
@@ -367,7 +322,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   // triangles step by step; at least a few nodes for a pair never run), in work and in time
   // (a GJK pair costs far more per unit than a closed-form one).
   const std::uint64_t expected = expectedCost(algorithm.lastWork(), kFirstWholeWork);
-  const double expectedMicros = expectedWholeMicros(algorithm);
+  const double expectedMicros = m_costs.expectedWholeMicros(algorithm);
   if (expected > shareUnits || expectedMicros > microsShare) {
     // A pair expected to cost more than the whole budget would never run again (the
     // estimate is re-measured only by running), and its kept contacts would not hold a
@@ -388,9 +343,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
       algorithm.collideScheduled(&wrappers.body0, &wrappers.body1, *m_info, &result, m_step);
   const double micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
   algorithm.setLastMicros(micros);
-  if (work >= kFirstGrant && micros > 0.0) {  // long enough to measure
-    m_microsPerWholeUnit += kSmoothing * (micros / static_cast<double>(work) - m_microsPerWholeUnit);
-  }
+  m_costs.measureWhole(work, micros);
   m_stats.nodePairs += work;
   m_stats.otherNodePairs += work;
   pair.written = true;
@@ -442,12 +395,12 @@ void FrameScheduler::refine(const FrameSettings& settings) {
       // A grant smaller than one expansion could only be used by overshooting the step.
       const std::uint64_t grant = std::min(more, left);
       if (grant < kNodePairsPerExpansion || !(micros > 0.0)) continue;
-      progress = query(pair, grant, micros, settings, true);
+      progress = query(pair, QueryRequest{grant, micros, true, false}, settings);
     } else {
       // The best-first one starts again with the larger grant.
       const std::uint64_t grant = std::min(pair.grant + more, left);
       if (grant <= pair.grant || !(micros > 0.0)) continue;
-      progress = query(pair, grant, micros, settings, false);
+      progress = query(pair, QueryRequest{grant, micros, false, false}, settings);
     }
     if (pair.decided()) {
       --m_undecided;
@@ -473,7 +426,7 @@ void FrameScheduler::runWholesLeft(const FrameSettings& settings) {
 bool FrameScheduler::outOfTime(const FrameSettings& s) const {
   if (std::isinf(s.budgetMicros)) return false;
   const double used = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
-  return used + m_lateWriteMicros > s.budgetMicros;
+  return used + m_costs.lateWriteMicros() > s.budgetMicros;
 }
 
 // Writes a pair's contacts and measures the time it took.
@@ -488,29 +441,16 @@ double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settin
   return micros;
 }
 
-namespace {
-MeshPairReport::Outcome outcomeOf(StopReason stop) {
-  if (stop == StopReason::Completed || stop == StopReason::WitnessesFull) {
-    return MeshPairReport::Outcome::Exact;
-  }
-  return stop == StopReason::QualityReached ? MeshPairReport::Outcome::Quality
-                                            : MeshPairReport::Outcome::Cut;
-}
-}  // namespace
-
 void FrameScheduler::meshPairs(std::vector<MeshPairReport>& out) const {
   out.clear();
-  for (const DeferredPair& pair : m_pairs) {
-    out.push_back(MeshPairReport{pair.object0, pair.object1, outcomeOf(pair.stop),
-                                 pair.confidence, pair.completeness});
-  }
+  for (const DeferredPair& pair : m_pairs) out.push_back(reportOf(pair));
 }
 
 // The pairs still unwritten (those the budget cut), then the step's statistics.
 void FrameScheduler::writeContacts(const FrameSettings& settings) {
   const double early = m_stats.contactMicros;
   std::uint32_t late = 0;
-  double confidenceSum = 0.0, completenessSum = 0.0;
+  MeshPairTally tally;
   for (DeferredPair& pair : m_pairs) {
     if (!pair.written) {
       if (outOfTime(settings)) {
@@ -523,31 +463,11 @@ void FrameScheduler::writeContacts(const FrameSettings& settings) {
         ++late;
       }
     }
-    m_stats.neededNodePairs += pair.meshMesh().needed();
-    m_stats.fromScratchNodePairs += pair.meshMesh().neededFromScratch();
-    confidenceSum += pair.confidence;
-    m_stats.worstConfidence = std::min(m_stats.worstConfidence, pair.confidence);
-    completenessSum += pair.completeness;
-    m_stats.worstCompleteness = std::min(m_stats.worstCompleteness, pair.completeness);
-    switch (outcomeOf(pair.stop)) {
-      case MeshPairReport::Outcome::Exact: ++m_stats.exactPairs; break;
-      case MeshPairReport::Outcome::Quality: ++m_stats.qualityPairs; break;
-      case MeshPairReport::Outcome::Cut: ++m_stats.cutPairs; break;
-    }
+    tally.add(pair, m_stats);
   }
-  if (!m_pairs.empty()) {
-    m_stats.meanConfidence = confidenceSum / static_cast<double>(m_pairs.size());
-    m_stats.meanCompleteness = completenessSum / static_cast<double>(m_pairs.size());
-  }
+  tally.finish(m_pairs.size(), m_stats);
   const std::uint32_t earlyPairs = static_cast<std::uint32_t>(m_pairs.size()) - late;
-  if (earlyPairs > 0) {
-    const double perPair = early / static_cast<double>(earlyPairs);
-    m_writeMicros += kSmoothing * (perPair - m_writeMicros);
-  }
-  if (late > 0) {
-    const double perPair = (m_stats.contactMicros - early) / static_cast<double>(late);
-    m_lateWriteMicros += kSmoothing * (perPair - m_lateWriteMicros);
-  }
+  m_costs.measureWrites(early, earlyPairs, m_stats.contactMicros - early, late);
 }
 
 }  // namespace adb::detail

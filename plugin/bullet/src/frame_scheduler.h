@@ -2,11 +2,7 @@
 // and then spends the step's budget across them (policy: adb/bullet/frame_budget.h).
 #pragma once
 
-#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
-#include <LinearMath/btTransform.h>
-
 #include <BulletCollision/BroadphaseCollision/btDispatcher.h>
-#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 
 #include <chrono>
 #include <cstdint>
@@ -15,46 +11,18 @@
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/core/query.h"
-
-namespace adb {
-class ManifoldAlgorithm;
-class MeshMeshAlgorithm;
-}
+#include "deferred_pair.h"
+#include "frame_cost_model.h"
 
 namespace adb::detail {
 
-/// A pair noted during the dispatch: enough to rebuild Bullet's wrappers and result
-/// afterwards (the dispatch's own live on its stack; a compound's child wrappers only
-/// during its call), and the pair's scheduling state.
-struct DeferredPair {
-  ManifoldAlgorithm* algorithm;
-  const btCollisionObject* object0;
-  const btCollisionObject* object1;
-  const btCollisionShape* shape0;  // the wrapper's shape: a compound's child for a child pair
-  const btCollisionShape* shape1;
-  btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
-  int partId0, index0, partId1, index1;
-  std::uint32_t sequence;  // order of the dispatch: ties in the whole pairs' order
-  // A whole pair: how far its mesh moved against the other body since it last ran (its
-  // kept contacts' error), infinite if it never ran. The most moved run first.
-  btScalar motion = 0;
-  // Scheduling state of this step.
-  std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
-  double confidence = 0.0;     // see FrameStats::meanConfidence
-  double completeness = 0.0;   // see FrameStats::meanCompleteness: the refinement's order
-  StopReason stop = StopReason::Completed;
-  bool written = false;        // its contacts are in its manifold
-
-  /// Completed, stopped on quality or with its contacts found: nothing left to refine.
-  bool decided() const { return !isBudgetStop(stop); }
-  /// The mesh-mesh algorithm of a refinable pair.
-  MeshMeshAlgorithm& meshMesh() const;
-};
-
-/// Bullet's wrappers of a deferred pair, rebuilt as the dispatch made them.
-struct PairWrappers {
-  btCollisionObjectWrapper body0, body1;
-  explicit PairWrappers(const DeferredPair& pair);
+/// One query of a mesh-mesh pair: what it may spend and how it goes on.
+struct QueryRequest {
+  std::uint64_t grant = 0;  ///< node pairs
+  double micros = 0.0;      ///< time cap: what is left of the step (infinite: none)
+  bool resume = false;      ///< go on from where the pair's last query stopped
+  /// Granted less than it wants: a new exact query then descends deepest first.
+  bool starved = false;
 };
 
 class FrameScheduler {
@@ -85,7 +53,6 @@ class FrameScheduler {
 
   void firstPass(const FrameSettings& settings);
   bool binding(const FrameSettings& settings) const;
-  double expectedWholeMicros(const ManifoldAlgorithm& algorithm) const;
   void refine(const FrameSettings& settings);
   /// Collides a pair that is not refined (mesh against a convex shape, a plane or another
   /// concave shape) when its last cost fits in `share` node pairs and `microsShare`, or when
@@ -97,9 +64,8 @@ class FrameScheduler {
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
-  /// `starved`: granted less than it wants (a new query then descends deepest first).
-  std::uint64_t query(DeferredPair& pair, std::uint64_t grant, double micros,
-                      const FrameSettings& settings, bool resume, bool starved = false);
+  std::uint64_t query(DeferredPair& pair, const QueryRequest& request,
+                      const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
   bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);
@@ -107,7 +73,6 @@ class FrameScheduler {
   /// Microseconds left of a time budget, less the margin and, with `holdBackWrites`, the
   /// expected cost of the mesh-mesh contacts still to write.
   double microsLeft(const FrameSettings& settings, bool holdBackWrites = true) const;
-  void updateMargin(const FrameSettings& settings);
   std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting) const;
 
   std::vector<DeferredPair> m_pairs;   // mesh-mesh, refined (reused: no allocation)
@@ -116,17 +81,13 @@ class FrameScheduler {
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   FrameStats m_stats;
   Clock::time_point m_start;
-  // Measured costs, smoothed over steps: they turn a time budget into node-pair shares and
-  // hold back the contact writing. Start values are this machine's order of magnitude.
-  double m_microsPerNodePair = 0.25;
-  double m_writeMicros = 5.0;       // writing a decided pair's contacts
-  double m_lateWriteMicros = 20.0;  // writing a cut pair's, after the queries
-  double m_microsPerWholeUnit = 0.1;  // a whole pair's time per unit: for one never timed
+  // Measured costs: they turn a time budget into node-pair shares and hold back the
+  // contact writing.
+  FrameCostModel m_costs;
   // Pairs of this step not queried yet, and queried but neither decided nor written.
   std::size_t m_unqueried = 0;
   std::size_t m_undecided = 0;
   bool m_binding = false;  // this step's budget is smaller than its pairs' expected cost
-  double m_margin = 0.0;  // microseconds held back from a time budget (updateMargin)
   bool m_collecting = false;
   std::uint64_t m_step = 0;  // steps begun
   // Bodies with unusable poses this step (reused: no allocation in steady state).

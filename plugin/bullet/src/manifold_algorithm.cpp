@@ -22,7 +22,7 @@ ManifoldAlgorithm::ManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo&
     : btActivatingCollisionAlgorithm(ci, body0, body1), m_swapped(swapped) {
   // Looked up once per pair, not per step.
   if (auto* dispatcher = dynamic_cast<Dispatcher*>(ci.m_dispatcher1)) {
-    m_scheduler = &detail::schedulerOf(*dispatcher);
+    m_scheduler = dispatcher->m_scheduler.get();
   }
 }
 

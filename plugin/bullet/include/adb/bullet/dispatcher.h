@@ -23,13 +23,10 @@
 
 namespace adb {
 
-class Dispatcher;
-
+class ManifoldAlgorithm;
 namespace detail {
-class FrameScheduler;
-/// Internal: the scheduler adb's algorithms hand their pairs to.
-FrameScheduler& schedulerOf(Dispatcher& dispatcher);
-}  // namespace detail
+class FrameScheduler;  // opaque: the plugin's own
+}
 
 class Dispatcher : public btCollisionDispatcher {
  public:
@@ -61,7 +58,7 @@ class Dispatcher : public btCollisionDispatcher {
                                  const btDispatcherInfo& info, btDispatcher* dispatcher) override;
 
  private:
-  friend detail::FrameScheduler& detail::schedulerOf(Dispatcher& dispatcher);
+  friend class ManifoldAlgorithm;  // hands its pairs to the scheduler
 
   FrameSettings m_settings;
   std::unique_ptr<detail::FrameScheduler> m_scheduler;

@@ -72,6 +72,10 @@ struct FrameSettings {
   Fronts fronts = Fronts::WithNodePairBudget;
 };
 
+/// Throws SettingsError naming the first field out of range (Dispatcher::setFrameSettings
+/// calls it, as adb::validate(QuerySettings) is called for queries).
+void validate(const FrameSettings& settings);
+
 /// A body whose pose adb could not use in a step: its adb pairs were skipped (no contacts,
 /// its manifolds emptied) and the world went on.
 struct BadPose {
