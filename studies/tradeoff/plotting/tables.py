@@ -119,6 +119,22 @@ def open_table(path, required, optional=()):
     return handle, reader, {name: header.index(name) for name in present}
 
 
+def _table_rows(reader, col):
+    """A table's rows as {column: text}; a non-empty row cut short comes as None."""
+    width = max(col.values()) + 1
+    for row in reader:
+        if len(row) >= width:
+            yield {name: row[index] for name, index in col.items()}
+        elif row:
+            yield None
+
+
+def _key(cell):
+    """The (model, triangles, Setting) a row is about; ValueError when it does not parse."""
+    setting = _setting(cell["method"], cell["p_min"], cell["k_min"], cell["budget_us"])
+    return (cell["model"].strip(), int(float(cell["triangles"])), setting)
+
+
 class Point(NamedTuple):
     """One row of distances.csv: a setting's queries at one distance, judged by adb-tradeoff
     (error and confidence over the queries whose root boxes overlap; None where none did)."""
@@ -168,18 +184,14 @@ class Dataset:
         if not os.path.exists(path):
             return  # runs before distances.csv existed: the per-distance figures are skipped
         handle, reader, col = open_table(path, DISTANCE_COLUMNS)
-        width = max(col.values()) + 1
         per_distance = defaultdict(dict)
         with handle:
-            for row in reader:
-                if len(row) < width:  # e.g. the cut-off last line of an interrupted run
-                    self.skipped_rows += bool(row)
+            for cell in _table_rows(reader, col):
+                if cell is None:  # e.g. the cut-off last line of an interrupted run
+                    self.skipped_rows += 1
                     continue
-                cell = {name: row[index] for name, index in col.items()}
                 try:
-                    setting = _setting(cell["method"], cell["p_min"], cell["k_min"],
-                                       cell["budget_us"])
-                    key = (cell["model"].strip(), int(float(cell["triangles"])), setting)
+                    key = _key(cell)
                     point = Point(int(float(cell["queries"])), _float(cell["mean_us"]),
                                   int(float(cell["overlapping"])), _float(cell["error_pct"]),
                                   _float(cell["mean_confidence"]))
@@ -195,17 +207,11 @@ class Dataset:
     def read_summary(self):
         path = os.path.join(self.dir, "summary.csv")
         handle, reader, col = open_table(path, SUMMARY_COLUMNS, SUMMARY_OPTIONAL)
-        width = max(col.values()) + 1
         with handle:
-            for record in reader:
-                if len(record) < width:
-                    continue
-                cell = {name: record[index] for name, index in col.items()}
+            for cell in _table_rows(reader, col):
                 try:
-                    setting = _setting(cell["method"], cell["p_min"], cell["k_min"],
-                                       cell["budget_us"])
-                    key = (cell["model"].strip(), int(float(cell["triangles"])), setting)
-                except ValueError:
+                    key = _key(cell)
+                except (TypeError, ValueError):  # TypeError: a row cut short (None)
                     continue
                 speedup = {peer: _float(cell["speedup_vs_" + peer]) for peer in PEERS}
                 self.summary[key] = SummaryRow(_float(cell["mean_us"]), _float(cell["error_pct"]),
@@ -242,17 +248,12 @@ class Dataset:
         handle, reader, col = open_table(path, RELIABILITY_COLUMNS)
         bins = defaultdict(dict)  # key -> {bin index: Bin}
         with handle:
-            for row in reader:
-                if len(row) < len(col):
-                    continue
-                cell = {name: row[index] for name, index in col.items()}
+            for cell in _table_rows(reader, col):
                 try:
-                    setting = _setting(cell["method"], cell["p_min"], cell["k_min"],
-                                       cell["budget_us"])
-                    key = (cell["model"].strip(), int(float(cell["triangles"])), setting)
+                    key = _key(cell)
                     index, count = int(float(cell["bin"])), int(float(cell["count"]))
                     lo, hi = float(cell["bin_lo"]), float(cell["bin_hi"])
-                except ValueError:
+                except (TypeError, ValueError):  # TypeError: a row cut short (None)
                     continue
                 bins[key][index] = Bin(lo, hi, count, _float(cell["mean_confidence"]),
                                        _float(cell["fraction_right"]))
