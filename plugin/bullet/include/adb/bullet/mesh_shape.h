@@ -14,9 +14,9 @@
 
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 
-#include <atomic>
 #include <memory>
 
+#include "adb/bullet/detail/once_flag.h"
 #include "adb/bullet/precision.h"
 #include "adb/core/mass_properties.h"
 #include "adb/core/mesh.h"
@@ -32,22 +32,6 @@ enum class ShapeFrame {
   Mesh,       ///< the mesh's own coordinates, unchanged
   Principal,  ///< centre of mass at the origin, principal axes along x, y, z (moments ascending)
 };
-
-namespace detail {
-/// A flag raised at most once, from any thread (a warning given once per MeshData). Copies
-/// start lowered, so MeshData stays copyable and movable.
-class OnceFlag {
- public:
-  OnceFlag() = default;
-  OnceFlag(const OnceFlag&) noexcept {}
-  OnceFlag& operator=(const OnceFlag&) noexcept { return *this; }
-  /// True the first time only.
-  bool raise() const noexcept { return !m_raised.exchange(true, std::memory_order_relaxed); }
-
- private:
-  mutable std::atomic<bool> m_raised{false};
-};
-}  // namespace detail
 
 /// The data many MeshShapes share: the mesh, its tree and its mass properties. Immutable.
 struct MeshData {

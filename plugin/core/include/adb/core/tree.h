@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "adb/core/detail/sibling_pair_allocator.h"
 #include "adb/core/errors.h"
 #include "adb/core/geometry.h"
 #include "adb/core/mesh.h"
@@ -39,35 +40,6 @@ struct BuildSettings {
   /// shows the measurements behind the default. In (0, 1].
   double areaThreshold = 0.35;
 };
-
-namespace detail {
-
-/// Places element 1 of an array of 32-byte records at a 64-byte boundary. The builder
-/// allocates siblings as pairs (2k + 1, 2k + 2) after the root at 0, and a traversal reads
-/// both children of a node together: with this offset each pair shares one cache line
-/// instead of straddling two.
-template <class T>
-struct SiblingPairAllocator {
-  static_assert(sizeof(T) == 32, "two records per cache line");
-  using value_type = T;
-  static constexpr std::size_t kLine = 64;
-  SiblingPairAllocator() = default;
-  template <class U>
-  SiblingPairAllocator(const SiblingPairAllocator<U>&) {}
-  T* allocate(std::size_t n) {
-    void* line = ::operator new(n * sizeof(T) + kLine, std::align_val_t(kLine));
-    return reinterpret_cast<T*>(static_cast<char*>(line) + sizeof(T));
-  }
-  void deallocate(T* p, std::size_t) {
-    ::operator delete(reinterpret_cast<char*>(p) - sizeof(T), std::align_val_t(kLine));
-  }
-  template <class U>
-  bool operator==(const SiblingPairAllocator<U>&) const { return true; }
-  template <class U>
-  bool operator!=(const SiblingPairAllocator<U>&) const { return false; }
-};
-
-}  // namespace detail
 
 /// One tree node: 32 bytes, the hot data of the traversal, two per cache line.
 struct Node {
