@@ -87,7 +87,8 @@ def _save(fig, path, title):
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
     rows = math.ceil(len(labels) / 3)
     fig.tight_layout(rect=(0, 0.01 + 0.2 * rows / fig.get_figheight(), 1, 0.96))
-    fig.savefig(path, dpi=90)
+    # tight: a figure of one scene is narrower than the three-column legend under it.
+    fig.savefig(path, dpi=90, bbox_inches="tight")
     plt.close(fig)
 
 
