@@ -17,7 +17,7 @@
 
 namespace {
 
-using adb::demo::ConvexKind;
+using adb::tools::ConvexKind;
 
 constexpr int kPoses = 64;
 
@@ -28,8 +28,8 @@ const adb::TriangleMesh& knot() {
 }
 
 void pairKind(benchmark::State& state, ConvexKind kind, bool adb) {
-  const auto world = adb::demo::makePairWorld(knot(), kind, adb);
-  const auto poses = adb::demo::surfacePoses(
+  const auto world = adb::tools::makePairWorld(knot(), kind, adb);
+  const auto poses = adb::tools::surfacePoses(
       knot(), static_cast<const btConvexShape&>(*world->convexShape), kind, kPoses, 7);
   std::size_t i = 0;
   for (auto _ : state) {
@@ -51,7 +51,7 @@ void registerAll() {
   for (ConvexKind kind : {ConvexKind::Box, ConvexKind::Wall, ConvexKind::Sphere,
                           ConvexKind::Capsule, ConvexKind::Cylinder, ConvexKind::Hull}) {
     for (bool adb : {true, false}) {
-      const std::string name = std::string("pair/") + adb::demo::kindName(kind) +
+      const std::string name = std::string("pair/") + adb::tools::kindName(kind) +
                                (adb ? "/adb" : "/bullet");
       benchmark::RegisterBenchmark(name.c_str(), pairKind, kind, adb)
           ->Unit(benchmark::kMicrosecond);

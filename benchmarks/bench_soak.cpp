@@ -51,22 +51,22 @@ void addOptions(CLI::App& app, Options& o) {
       "shapes, Bullet primitives); RSS and time per step every interval, and a verdict.");
   constexpr long long kNoLimit = std::numeric_limits<long long>::max();
   constexpr long long kMaxInt = std::numeric_limits<int>::max();
-  adb::demo::addIntegerOption(app, "--steps", o.steps, 1, kMaxInt, "steps to run");
-  adb::demo::addIntegerOption(app, "--interval", o.interval, 1, kMaxInt,
+  adb::tools::addIntegerOption(app, "--steps", o.steps, 1, kMaxInt, "steps to run");
+  adb::tools::addIntegerOption(app, "--interval", o.interval, 1, kMaxInt,
                               "steps per row of the table");
-  adb::demo::addIntegerOption(app, "--bodies", o.bodies, 1, 100000,
+  adb::tools::addIntegerOption(app, "--bodies", o.bodies, 1, 100000,
                               "dynamic bodies alive at any time");
-  adb::demo::addIntegerOption(app, "--churn", o.churn, 0, 100000,
+  adb::tools::addIntegerOption(app, "--churn", o.churn, 0, 100000,
                               "bodies added and as many removed every step (at most --bodies)");
-  adb::demo::addIntegerOption(app, "--seed", o.seed, 0, kNoLimit,
+  adb::tools::addIntegerOption(app, "--seed", o.seed, 0, kNoLimit,
                               "random seed (bodies, poses, removals)");
-  adb::demo::addIntegerOption(app, "--budget-pairs", o.budgetPairs, 0, kNoLimit,
+  adb::tools::addIntegerOption(app, "--budget-pairs", o.budgetPairs, 0, kNoLimit,
                               "node-pair budget per step (0: none)");
-  adb::demo::addValueOption(
+  adb::tools::addValueOption(
       app, "--budget-us", "US", "time budget per step in microseconds (0: none)",
       [&o](const std::string& text) {
-        const double micros = adb::demo::parseNumber("--budget-us", text);
-        if (micros < 0) adb::demo::failValue("--budget-us", text, "must be >= 0");
+        const double micros = adb::tools::parseNumber("--budget-us", text);
+        if (micros < 0) adb::tools::failValue("--budget-us", text, "must be >= 0");
         o.budgetMicros = micros;
       },
       "0");
@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
   Options o;
   addOptions(app, o);
   if (const std::optional<int> exitCode =
-          adb::demo::parseCommandLine(app, "adb-bench-soak", argc, argv)) {
+          adb::tools::parseCommandLine(app, "adb-bench-soak", argc, argv)) {
     return *exitCode;
   }
   if (o.churn > o.bodies) {
@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
               "own mesh", "RSS MB", "peak MB", "ms/step", "churn ms", "adb pairs", "us/pair");
   std::fflush(stdout);
 
-  adb::demo::Progress progress(static_cast<std::uint64_t>(o.steps), "steps");
+  adb::tools::Progress progress(static_cast<std::uint64_t>(o.steps), "steps");
   std::vector<Row> rows;
   double stepSeconds = 0, churnSeconds = 0, pairs = 0, otherPairs = 0;
   int inInterval = 0;

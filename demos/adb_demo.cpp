@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
   Options o;
   addOptions(app, o);
   if (const std::optional<int> exitCode =
-          adb::demo::parseCommandLine(app, "adb-demo", argc, argv)) {
+          adb::tools::parseCommandLine(app, "adb-demo", argc, argv)) {
     return *exitCode;
   }
   return run(app, o);

@@ -32,11 +32,11 @@ void addOptions(CLI::App& app, Options& o) {
       "confidence, time and node pairs.");
   constexpr long long kNoLimit = std::numeric_limits<long long>::max();
   // makeModel gives its coarsest mesh below about 1000 triangles; 0 is a typo.
-  adb::demo::addIntegerOption(app, "--triangles", o.triangles, 1, kNoLimit,
+  adb::tools::addIntegerOption(app, "--triangles", o.triangles, 1, kNoLimit,
                               "about this many triangles in the knot");
-  adb::demo::addIntegerOption(app, "--poses", o.poses, 1, std::numeric_limits<int>::max(),
+  adb::tools::addIntegerOption(app, "--poses", o.poses, 1, std::numeric_limits<int>::max(),
                               "random orientation pairs per distance");
-  adb::demo::addIntegerOption(app, "--seed", o.seed, 0, kNoLimit,
+  adb::tools::addIntegerOption(app, "--seed", o.seed, 0, kNoLimit,
                               "seed of the random orientations");
 }
 
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   Options opt;
   addOptions(app, opt);
   if (const std::optional<int> exitCode =
-          adb::demo::parseCommandLine(app, "adb-core-demo", argc, argv)) {
+          adb::tools::parseCommandLine(app, "adb-core-demo", argc, argv)) {
     return *exitCode;
   }
   const adb::TriangleMesh mesh = adb::gen::makeModel("knot", opt.triangles);

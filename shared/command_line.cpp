@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <utility>
 
-namespace adb::demo {
+namespace adb::tools {
 
 void failValue(const std::string& option, const std::string& value, const std::string& problem) {
   throw UsageError(option + " '" + value + "': " + problem);
@@ -91,4 +91,4 @@ std::optional<int> parseCommandLine(CLI::App& app, const std::string& tool, int 
   return std::nullopt;
 }
 
-}  // namespace adb::demo
+}  // namespace adb::tools

@@ -20,7 +20,7 @@ class App;
 class Option;
 }  // namespace CLI
 
-namespace adb::demo {
+namespace adb::tools {
 
 /// A usage error: a bad option or value. The tools print it and exit 2.
 class UsageError : public std::runtime_error {
@@ -78,4 +78,4 @@ bool parseOrThrow(CLI::App& app, int argc, const char* const* argv);
 std::optional<int> parseCommandLine(CLI::App& app, const std::string& tool, int argc,
                                     const char* const* argv);
 
-}  // namespace adb::demo
+}  // namespace adb::tools

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace adb::demo {
+namespace adb::tools {
 namespace {
 
 // Sizes relative to the mesh's bounding-box diagonal: small bodies against a large mesh,
@@ -167,4 +167,4 @@ std::vector<std::pair<btTransform, btTransform>> surfacePoses(const TriangleMesh
   return poses;
 }
 
-}  // namespace adb::demo
+}  // namespace adb::tools

@@ -17,7 +17,7 @@
 #include "adb/core/mesh.h"
 #include "adb/bullet/triangle_arrays.h"
 
-namespace adb::demo {
+namespace adb::tools {
 
 /// The convex shapes a pair-kind scene can hold. Wall: a box much larger than the mesh,
 /// tilted, with a face through the mesh (a bin's wall or floor).
@@ -54,4 +54,4 @@ std::vector<std::pair<btTransform, btTransform>> surfacePoses(const TriangleMesh
                                                              ConvexKind kind, int count,
                                                              unsigned seed);
 
-}  // namespace adb::demo
+}  // namespace adb::tools

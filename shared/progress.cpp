@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <utility>
 
-namespace adb::demo {
+namespace adb::tools {
 namespace {
 
 constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
@@ -82,4 +82,4 @@ void Progress::finish() {
   m_drawn = false;
 }
 
-}  // namespace adb::demo
+}  // namespace adb::tools

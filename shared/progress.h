@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-namespace adb::demo {
+namespace adb::tools {
 
 class Progress {
  public:
@@ -38,4 +38,4 @@ class Progress {
   bool m_drawn = false;
 };
 
-}  // namespace adb::demo
+}  // namespace adb::tools

@@ -54,7 +54,7 @@ std::vector<std::size_t> parseTriangles(const std::string& text) {
   std::vector<std::size_t> out;
   for (const std::string& item : split(text)) {
     out.push_back(static_cast<std::size_t>(
-        adb::demo::parseIntegerIn("--triangles", item, 1, std::numeric_limits<long long>::max())));
+        adb::tools::parseIntegerIn("--triangles", item, 1, std::numeric_limits<long long>::max())));
   }
   return out;
 }
@@ -65,7 +65,7 @@ std::vector<std::string> parseModels(const std::string& text) {
   const std::vector<std::string> out = split(text);
   for (const std::string& name : out) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
-      adb::demo::failValue("--models", name,
+      adb::tools::failValue("--models", name,
                            "unknown model; known models: " + joined(known, ", "));
     }
   }
@@ -80,26 +80,26 @@ void addOptions(CLI::App& app, Options& o) {
       "benchmark poses (distances 0.4..2.0 by 0.1, seed 1), for the generated models: error\n"
       "rate among queries whose root boxes overlap, mean query time (best of 3 runs), node\n"
       "pairs, stop reasons; a Markdown table (docs/core-results.md).");
-  adb::demo::addValueOption(
+  adb::tools::addValueOption(
       app, "--triangles", "N[,N...]", "about N triangles per model; each N is a row",
       [&o](const std::string& v) { o.triangles = parseTriangles(v); }, "20000");
-  adb::demo::addValueOption(
+  adb::tools::addValueOption(
       app, "--models", "LIST", "generated models (" + joined(adb::gen::modelNames(), ", ") + ")",
       [&o](const std::string& v) { o.models = parseModels(v); }, joined(o.models));
-  adb::demo::addIntegerOption(app, "--poses", o.poses, 1, std::numeric_limits<int>::max(),
+  adb::tools::addIntegerOption(app, "--poses", o.poses, 1, std::numeric_limits<int>::max(),
                               "random orientation pairs per distance");
-  adb::demo::addValueOption(
+  adb::tools::addValueOption(
       app, "--p-min", "P", "ADB's p_min, in [0, 1]",
       [&o](const std::string& v) {
-        o.pMin = adb::demo::parseNumber("--p-min", v);
-        if (o.pMin < 0.0 || o.pMin > 1.0) adb::demo::failValue("--p-min", v, "must be in [0, 1]");
+        o.pMin = adb::tools::parseNumber("--p-min", v);
+        if (o.pMin < 0.0 || o.pMin > 1.0) adb::tools::failValue("--p-min", v, "must be in [0, 1]");
       },
       "0.99");
-  adb::demo::addIntegerOption(app, "--k-min", o.kMin, 1, 1000000, "ADB's k_min");
+  adb::tools::addIntegerOption(app, "--k-min", o.kMin, 1, 1000000, "ADB's k_min");
   app.add_flag_callback("--exact-counting", [&o] { o.counting = adb::CellCounting::Exact; },
                         "build the trees with exact cell counts (default approximate)")
       ->disable_flag_override();
-  adb::demo::addIntegerOption(app, "--grid", o.grid, 1, 32, "cells per axis of each node's grid");
+  adb::tools::addIntegerOption(app, "--grid", o.grid, 1, 32, "cells per axis of each node's grid");
 }
 
 // The fastest of three runs: the machines are shared and noisy; the minimum is the query's.
@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
   Options o;
   addOptions(app, o);
   if (const std::optional<int> exitCode =
-          adb::demo::parseCommandLine(app, "adb-core-study", argc, argv)) {
+          adb::tools::parseCommandLine(app, "adb-core-study", argc, argv)) {
     return *exitCode;
   }
   std::printf("ADB p_min %.2f, k_min %d (%s cell counts, grid %d) vs exact mode, distances "

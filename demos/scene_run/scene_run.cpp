@@ -137,7 +137,7 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   const std::vector<int> strip = stripSteps(o, steps);
   if (o.render) std::filesystem::create_directories(folder / "frames");
   printHeader(scene.effects);
-  Progress progress(static_cast<std::uint64_t>(steps), "steps");
+  tools::Progress progress(static_cast<std::uint64_t>(steps), "steps");
   int frame = 0;
   for (int step = 1; step <= steps; ++step) {
     const scene::StepRecord& r = world.step();

@@ -350,21 +350,21 @@ void addOptions(CLI::App& app, Options& o) {
       "--mesh files; prints the weights as C++ and the calibration error per model and budget\n"
       "(docs/probability-model.md).");
   constexpr long long kNoLimit = std::numeric_limits<long long>::max();
-  adb::demo::addIntegerOption(app, "--triangles", o.triangles, 1000, kNoLimit,
+  adb::tools::addIntegerOption(app, "--triangles", o.triangles, 1000, kNoLimit,
                               "about this many triangles per generated model");
-  adb::demo::addIntegerOption(app, "--rotations", o.rotations, 1,
+  adb::tools::addIntegerOption(app, "--rotations", o.rotations, 1,
                               std::numeric_limits<int>::max(),
                               "random orientation pairs per distance (0.4 to 2.0 by 0.1)");
-  adb::demo::addValueOption(app, "--mesh", "FILE",
+  adb::tools::addValueOption(app, "--mesh", "FILE",
                             "a mesh file to check the fit on (not fitted); repeatable",
                             [&o](const std::string& path) {
                               // Checked here so that a typo fails before minutes of fitting.
                               if (!std::filesystem::is_regular_file(path)) {
-                                adb::demo::failValue("--mesh", path, "no such file");
+                                adb::tools::failValue("--mesh", path, "no such file");
                               }
                               o.meshes.push_back(path);
                             });
-  adb::demo::addValueOption(app, "--samples", "FILE",
+  adb::tools::addValueOption(app, "--samples", "FILE",
                             "write every sample (set, model, checkpoint, features, truth) "
                             "as CSV",
                             [&o](const std::string& path) { o.samplesPath = path; });
@@ -406,7 +406,7 @@ int main(int argc, char** argv) {
   Options o;
   addOptions(app, o);
   if (const std::optional<int> exitCode =
-          adb::demo::parseCommandLine(app, "adb-calibrate", argc, argv)) {
+          adb::tools::parseCommandLine(app, "adb-calibrate", argc, argv)) {
     return *exitCode;
   }
   try {

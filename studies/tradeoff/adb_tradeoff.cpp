@@ -69,7 +69,7 @@ int run(const Options& o) {
   auto tree = std::make_shared<SharedTree>(treeSettings(o));
   std::vector<std::unique_ptr<Method>> methods = makeMethods(o, tree);
   QueryCsv csv(o.outDir + "/queries.csv");
-  adb::demo::Progress progress(queriesPerModel(o, methods.size()) * o.sources.size(), "queries");
+  adb::tools::Progress progress(queriesPerModel(o, methods.size()) * o.sources.size(), "queries");
   StudyContext context{o, methods, csv, progress};
   std::vector<ModelResult> done;
   writeReports(o, done);  // headers only: the files exist even if the first model fails

@@ -20,10 +20,10 @@ namespace {
 // Ranges expand to at most this many distances: a step of 1e-9 is a typo, not a study.
 constexpr std::size_t kMaxDistances = 10000;
 
-using demo::failValue;
-using demo::parseInteger;
-using demo::parseIntegerIn;
-using demo::parseNumber;
+using tools::failValue;
+using tools::parseInteger;
+using tools::parseIntegerIn;
+using tools::parseNumber;
 
 // The defaults of the list flags, parsed like the flags (and shown in --help as typed).
 constexpr const char* kDefaultDistances = "0.4:2.0:0.1";
@@ -210,7 +210,7 @@ std::string listText(const std::vector<T>& items) {
 
 // What to measure: the models, and the poses of Zachmann's benchmark.
 void addModelFlags(CLI::App& app, Options& o) {
-  demo::addValueOption(app, "--mesh", "FILE",
+  tools::addValueOption(app, "--mesh", "FILE",
                        "a mesh file (any format assimp reads); repeatable",
                        [&o](const std::string& value) {
                          if (value.empty()) failValue("--mesh", value, "empty file name");
@@ -219,7 +219,7 @@ void addModelFlags(CLI::App& app, Options& o) {
                          s.path = value;
                          o.sources.push_back(s);
                        });
-  demo::addValueOption(app, "--model", "NAME[:N]",
+  tools::addValueOption(app, "--model", "NAME[:N]",
                        "a generated model (" + joined(adb::gen::modelNames()) +
                            "),\nabout N triangles (1000..1000000, default 20000); "
                            "repeatable.\nModels run in command-line order; at least one "
@@ -227,13 +227,13 @@ void addModelFlags(CLI::App& app, Options& o) {
                        [&o](const std::string& value) {
                          o.sources.push_back(parseModel("--model", value));
                        });
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--distances", "LIST", "numbers or ranges start:end:step, comma-separated",
       [&o](const std::string& value) { o.distances = parseDistances("--distances", value); },
       kDefaultDistances);
-  demo::addIntegerOption(app, "--rotations", o.rotations, 1, 10000000,
+  tools::addIntegerOption(app, "--rotations", o.rotations, 1, 10000000,
                          "random orientation pairs per distance");
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--seed", "N", "seed of the random orientations",
       [&o](const std::string& value) {
         const long long s = parseInteger("--seed", value);
@@ -245,7 +245,7 @@ void addModelFlags(CLI::App& app, Options& o) {
 
 // Which methods answer, and the ADB settings swept.
 void addMethodFlags(CLI::App& app, Options& o) {
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--methods", "LIST",
       "adb (every p_min x k_min x budget), exact (the ADB-tree's exact\n"
       "mode), gimpact (Bullet GImpact, full contact set), fcl (FCL\n"
@@ -259,15 +259,15 @@ void addMethodFlags(CLI::App& app, Options& o) {
       "overlap, confidence 0.5)",
       [&o](const std::string& value) { o.methods = parseMethods("--methods", value); },
       listText(o.methods));
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--p-min", "LIST", "ADB quality targets to sweep: probabilities in [0, 1]",
       [&o](const std::string& value) { o.pMins = parsePMins("--p-min", value); },
       listText(o.pMins));
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--k-min", "LIST", "ADB quality targets to sweep: node pair counts >= 1",
       [&o](const std::string& value) { o.kMins = parseKMins("--k-min", value); },
       listText(o.kMins));
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--budget-us", "LIST",
       "wall-clock budgets in microseconds for adb, exact-cut and\n"
       "box-first; 'none' = no budget (adb only)",
@@ -280,7 +280,7 @@ void addMethodFlags(CLI::App& app, Options& o) {
                         "into every ancestor's grid, ~20x slower) instead of the\n"
                         "approximate ones (paper section 3.4)")
       ->disable_flag_override();
-  demo::addValueOption(
+  tools::addValueOption(
       app, "--budget-pairs", "LIST",
       "ADB work budgets in node pairs, positive integers (default: none);\n"
       "each N adds the methods 'adb-work:N', one per p_min x k_min",
@@ -291,8 +291,8 @@ void addMethodFlags(CLI::App& app, Options& o) {
 
 // How each query is timed and where the results go.
 void addRunFlags(CLI::App& app, Options& o) {
-  demo::addIntegerOption(app, "--repeats", o.repeats, 1, 1000, "timed runs per query");
-  demo::addValueOption(
+  tools::addIntegerOption(app, "--repeats", o.repeats, 1, 1000, "timed runs per query");
+  tools::addValueOption(
       app, "--out", "DIR",
       "output directory: queries.csv, summary.csv, summary.md,\n"
       "reliability.csv, cells.csv, distances.csv, plots",
@@ -352,7 +352,7 @@ Options parseOptions(int argc, const char* const* argv) {
   o.budgetsUs = parseBudgets("--budget-us", kDefaultBudgets);
   CLI::App app{"", "adb-tradeoff"};
   describe(app, o);
-  if (demo::parseOrThrow(app, argc, argv)) {
+  if (tools::parseOrThrow(app, argc, argv)) {
     o.help = true;
     return o;
   }

@@ -14,7 +14,7 @@
 namespace adb::tradeoff {
 
 /// A usage error: a bad flag or value. main() prints it and exits 2.
-using UsageError = demo::UsageError;
+using UsageError = tools::UsageError;
 
 /// One model to study, in command-line order: a mesh file or a generated model.
 struct ModelSource {

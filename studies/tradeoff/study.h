@@ -20,7 +20,7 @@ struct StudyContext {
   const Options& options;
   std::vector<std::unique_ptr<Method>>& methods;
   QueryCsv& csv;
-  demo::Progress& progress;
+  tools::Progress& progress;
 };
 
 /// Runs the study of one model (the cell histogram is added by the caller).

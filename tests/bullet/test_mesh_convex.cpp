@@ -12,7 +12,7 @@
 namespace adb {
 namespace {
 
-using demo::ConvexKind;
+using tools::ConvexKind;
 
 // Closed-form kinds (box, wall, sphere, capsule) are exact per triangle; the others run
 // Bullet's GJK/EPA per triangle on both sides.
@@ -38,17 +38,17 @@ TEST_P(MeshConvexAgainstBullet, FindsEveryRestingContactAsDeepAsBullet) {
   const TriangleMesh mesh = gen::makeModel("knot", 6000);
   const double resting = 0.01 * 0.05 * mesh.bounds().extent().norm();
   const double tolerance = 0.1 * resting;
-  auto adb = demo::makePairWorld(mesh, kind, true);
-  auto bullet = demo::makePairWorld(mesh, kind, false);
+  auto adb = tools::makePairWorld(mesh, kind, true);
+  auto bullet = tools::makePairWorld(mesh, kind, false);
   for (auto* w : {adb.get(), bullet.get()}) w->convexShape->setMargin(btScalar(1e-4));
-  const auto poses = demo::surfacePoses(
+  const auto poses = tools::surfacePoses(
       mesh, static_cast<const btConvexShape&>(*adb->convexShape), kind, 48, 11);
   int pose = 0, bulletFoundDepth = 0;
   for (const auto& [meshPose, convexPose] : poses) {
     adb->collide(meshPose, convexPose);
     bullet->collide(meshPose, convexPose);
     const double ours = adb->deepestPenetration(), theirs = bullet->deepestPenetration();
-    SCOPED_TRACE(std::string(demo::kindName(kind)) + " pose " + std::to_string(pose++) +
+    SCOPED_TRACE(std::string(tools::kindName(kind)) + " pose " + std::to_string(pose++) +
                  ": adb " + std::to_string(ours) + ", Bullet " + std::to_string(theirs));
     EXPECT_GT(adb->contactPoints(), 0);
     if (closedForm(kind)) {
@@ -65,7 +65,7 @@ INSTANTIATE_TEST_SUITE_P(Kinds, MeshConvexAgainstBullet,
                          ::testing::Values(ConvexKind::Box, ConvexKind::Wall, ConvexKind::Sphere,
                                            ConvexKind::Capsule, ConvexKind::Cylinder,
                                            ConvexKind::Hull),
-                         [](const auto& kind) { return std::string(demo::kindName(kind.param)); });
+                         [](const auto& kind) { return std::string(tools::kindName(kind.param)); });
 
 }  // namespace
 }  // namespace adb
