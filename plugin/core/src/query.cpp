@@ -527,6 +527,7 @@ struct Traversal::Impl {
   };
   int orderedChildren(const Expansion& x, bool measure, ChildTest out[4]) {
     detail::ChildPairs pairs = pairsOf(x);
+    if (!deepestFirst) return inTreeOrder(pairs, x, measure, out);
     ChildTest sorted[4];
     float key[4];  // ascending: the pop order is its reverse
     int count = 0;
@@ -539,14 +540,9 @@ struct Traversal::Impl {
           t.overlaps = r.overlaps;
           t.separation = r.separation;
         }
-        float depth = 0.0f;
-        if (deepestFirst) {
-          const double d = pairs.overlapDepth(i, j);  // -1 when apart
-          depth = static_cast<float>(d);
-          t.overlaps = d >= 0.0;
-        } else if (!measure) {
-          t.overlaps = pairs.overlap(i, j);
-        }
+        const double d = pairs.overlapDepth(i, j);  // -1 when apart
+        const float depth = static_cast<float>(d);
+        t.overlaps = d >= 0.0;
         int k = count++;
         for (; k > 0 && key[k - 1] > depth; --k) {
           sorted[k] = sorted[k - 1];
@@ -557,6 +553,30 @@ struct Traversal::Impl {
       }
     }
     for (int k = 0; k < count; ++k) out[k] = sorted[count - 1 - k];
+    return count;
+  }
+
+  // orderedChildren in the trees' order: no keys to sort by, so each pair goes straight to
+  // its place, last child first (the hot path of exact mode: no copies).
+  int inTreeOrder(detail::ChildPairs& pairs, const Expansion& x, bool measure, ChildTest out[4]) {
+    int k = x.countA * x.countB;
+    const int count = k;
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        ++work.nodePairs;
+        ChildTest& t = out[--k];
+        t.a = x.ca[i];
+        t.b = x.cb[j];
+        if (measure) {
+          const detail::PairTest r = pairs.test(i, j);
+          t.overlaps = r.overlaps;
+          t.separation = r.separation;
+        } else {
+          t.overlaps = pairs.overlap(i, j);
+          t.separation = 0.0;
+        }
+      }
+    }
     return count;
   }
 
