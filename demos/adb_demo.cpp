@@ -75,7 +75,8 @@ void addOptions(CLI::App& app, Options& o) {
   app.add_option("--fronts", o.fronts,
                  "mesh-mesh pairs keep the node pairs they evaluated and re-test what moved: "
                  "with a node-pair budget (default), always, or never")
-      ->check(CLI::IsMember({"node_pair_budget", "always", "never"}));
+      ->check(CLI::IsMember(std::vector<std::string>(adb::kFrontsNames.begin(),
+                                                     adb::kFrontsNames.end())));
 
   app.add_flag("--render", o.run.render, "write DIR/frames/NNNNN.png, DIR/strip.png and "
                                          "DIR/movie.mp4 (with ffmpeg); needs --out");
@@ -107,7 +108,6 @@ void addOptions(CLI::App& app, Options& o) {
 
 // The command line's overrides of the scene's world settings.
 void takeOverrides(const CLI::App& app, Options& o) {
-  using Fronts = adb::FrameSettings::Fronts;
   adb::demo::SceneRunOptions& r = o.run;
   if (app.count("--steps")) r.steps = o.steps;
   if (app.count("--budget-us")) r.budgetMicros = o.budgetMicros;
@@ -115,11 +115,7 @@ void takeOverrides(const CLI::App& app, Options& o) {
   if (app.count("--p-min")) r.pMin = o.pMin;
   if (app.count("--k-min")) r.kMin = o.kMin;
   if (app.count("--p-accept")) r.pAccept = o.pAccept;
-  if (app.count("--fronts")) {
-    r.fronts = o.fronts == "always" ? Fronts::Always
-               : o.fronts == "never" ? Fronts::Never
-                                     : Fronts::WithNodePairBudget;
-  }
+  if (app.count("--fronts")) r.fronts = *adb::frontsNamed(o.fronts);  // checked by the parser
 }
 
 adb::scene::Scene pileScene(Options& o) {

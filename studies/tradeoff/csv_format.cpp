@@ -19,6 +19,10 @@ std::string format(const char* fmt, double value) {
   return buf;
 }
 
+std::string formatOrEmpty(const char* fmt, double value) {
+  return std::isnan(value) ? "" : format(fmt, value);
+}
+
 std::string methodParamFields(const MethodParams& p) {
   const std::string quality =
       p.hasQuality ? format("%.15g", p.pMin) + ',' + std::to_string(p.kMin) : std::string(",");

@@ -13,6 +13,8 @@ std::string csvField(const std::string& text);
 
 /// printf-style formatting into a std::string ("%.17g", ...).
 std::string format(const char* fmt, double value);
+/// format(), or an empty field for NaN (a figure the row cannot have).
+std::string formatOrEmpty(const char* fmt, double value);
 
 /// The `p_min,k_min,budget_us` fields of a method setting (three fields, two commas):
 /// p_min and k_min where the method has them (ADB), budget_us where it has a time budget.

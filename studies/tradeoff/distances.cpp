@@ -14,7 +14,7 @@ namespace adb::tradeoff {
 
 const char* const kDistancesCsvHeader =
     "model,triangles,method,p_min,k_min,budget_us,distance,queries,mean_us,overlapping,"
-    "error_pct,mean_confidence";
+    "error_pct,mean_confidence,reference";
 
 namespace {
 
@@ -24,8 +24,9 @@ struct AtDistance {
   double timeNs = 0.0, confidence = 0.0;
 };
 
-std::string optional(double value, std::size_t count) {
-  return count > 0 ? format("%.6g", value) : "";
+// `sum` over the judged queries, NaN (an empty field) when none was judged.
+double meanOver(double sum, std::size_t judged) {
+  return judged > 0 ? sum / static_cast<double>(judged) : std::nan("");
 }
 
 void writeMethod(std::ofstream& out, const ModelResult& result, const MethodRecords& m,
@@ -34,24 +35,28 @@ void writeMethod(std::ofstream& out, const ModelResult& result, const MethodReco
   const std::size_t n = std::min(m.queries.size(), result.distance.size());
   for (std::size_t i = 0; i < n; ++i) {
     AtDistance& d = byDistance[result.distance[i]];
-    const QueryRecord& q = m.queries[i];
     ++d.queries;
-    d.timeNs += q.timeNs;
-    const bool judged = reference && i < reference->queries.size() &&
-                        i < result.rootsOverlap.size() && result.rootsOverlap[i];
-    if (!judged) continue;
-    ++d.overlapping;
-    d.confidence += q.confidence;
-    d.wrong += q.collides != reference->queries[i].collides ? 1 : 0;
+    d.timeNs += m.queries[i].timeNs;
+  }
+  if (reference) {
+    forEachJudged(result, m, *reference, [&](std::size_t pose, const JudgedAnswer& answer) {
+      if (pose >= n) return;
+      AtDistance& d = byDistance[result.distance[pose]];
+      ++d.overlapping;
+      d.confidence += answer.confidence;
+      d.wrong += answer.right ? 0 : 1;
+    });
   }
   const std::string head = csvField(result.label) + ',' + std::to_string(result.triangles) + ',' +
                            m.name + ',' + methodParamFields(m.params) + ',';
+  const std::string referenceName = reference ? reference->name : "";
   for (const auto& [distance, d] : byDistance) {
-    const double share = d.overlapping > 0 ? 1.0 / static_cast<double>(d.overlapping) : 0.0;
     out << head << format("%.9g", distance) << ',' << d.queries << ','
         << format("%.6g", d.timeNs / 1000.0 / static_cast<double>(d.queries)) << ','
-        << d.overlapping << ',' << optional(100.0 * static_cast<double>(d.wrong) * share, d.overlapping)
-        << ',' << optional(d.confidence * share, d.overlapping) << '\n';
+        << d.overlapping << ','
+        << formatOrEmpty("%.6g", meanOver(100.0 * static_cast<double>(d.wrong), d.overlapping))
+        << ',' << formatOrEmpty("%.6g", meanOver(d.confidence, d.overlapping)) << ','
+        << referenceName << '\n';
   }
 }
 

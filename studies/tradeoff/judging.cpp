@@ -1,8 +1,6 @@
 // The reference of a run, and answers judged against it.
 #include "judging.h"
 
-#include <algorithm>
-
 namespace adb::tradeoff {
 
 const MethodRecords* findMethod(const ModelResult& result, const std::string& name) {
@@ -19,16 +17,10 @@ const MethodRecords* referenceOf(const ModelResult& result) {
 
 std::vector<JudgedAnswer> judgeAnswers(const ModelResult& result, const MethodRecords& method,
                                        const MethodRecords& reference) {
-  // Every method answered every pose; the bound only guards a partial record.
-  const std::size_t n = std::min({method.queries.size(), reference.queries.size(),
-                                  result.rootsOverlap.size()});
   std::vector<JudgedAnswer> judged;
-  judged.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!result.rootsOverlap[i]) continue;
-    const QueryRecord& q = method.queries[i];
-    judged.push_back(JudgedAnswer{q.confidence, q.collides == reference.queries[i].collides});
-  }
+  judged.reserve(result.rootsOverlap.size());
+  forEachJudged(result, method, reference,
+                [&](std::size_t, const JudgedAnswer& answer) { judged.push_back(answer); });
   return judged;
 }
 

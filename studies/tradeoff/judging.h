@@ -4,6 +4,8 @@
 // both count exactly these queries.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -18,8 +20,23 @@ const MethodRecords* findMethod(const ModelResult& result, const std::string& na
 /// The error reference: "exact" if it ran, else "fcl", else nullptr (no error rates).
 const MethodRecords* referenceOf(const ModelResult& result);
 
-/// `method`'s answers on the queries whose root boxes overlap, judged against `reference`
-/// (both indexed like result.rootsOverlap).
+/// Calls f(pose, JudgedAnswer) for each of `method`'s answers on a query whose root boxes
+/// overlap, judged against `reference` (both indexed like result.rootsOverlap): the one rule
+/// every figure of a run (error rate, calibration, per distance) counts by.
+template <typename F>
+void forEachJudged(const ModelResult& result, const MethodRecords& method,
+                   const MethodRecords& reference, F&& f) {
+  // Every method answered every pose; the bound only guards a partial record.
+  const std::size_t n = std::min({method.queries.size(), reference.queries.size(),
+                                  result.rootsOverlap.size()});
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!result.rootsOverlap[i]) continue;
+    const QueryRecord& q = method.queries[i];
+    f(i, JudgedAnswer{q.confidence, q.collides == reference.queries[i].collides});
+  }
+}
+
+/// forEachJudged's answers, in pose order.
 std::vector<JudgedAnswer> judgeAnswers(const ModelResult& result, const MethodRecords& method,
                                        const MethodRecords& reference);
 

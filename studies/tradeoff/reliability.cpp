@@ -19,7 +19,7 @@ const char* const kReliabilityCsvHeader =
 
 namespace {
 
-std::string number(double v) { return std::isnan(v) ? "" : format("%.6g", v); }
+std::string number(double v) { return formatOrEmpty("%.6g", v); }
 
 void writeGroup(std::ostream& out, const ModelResult& result, const MethodRecords& method,
                 const std::vector<JudgedAnswer>& judged) {

@@ -75,7 +75,7 @@ double speedup(const MethodRecords* peer, double ownMeanUs) {
   return peer && ownMeanUs > 0.0 ? meanUs(*peer) / ownMeanUs : kNaN;
 }
 
-std::string number(double v, const char* fmt) { return std::isnan(v) ? "" : format(fmt, v); }
+std::string number(double v, const char* fmt) { return formatOrEmpty(fmt, v); }
 
 std::string csvLine(const SummaryRow& r) {
   return csvField(r.model) + ',' + std::to_string(r.triangles) + ',' + r.method + ',' +

@@ -115,7 +115,8 @@ def _synthetic_distances(groups_by_distance):
                      _cell(s.budget_us), distance, len(group),
                      "%.4f" % (sum(g[0] for g in group) / len(group)), len(overlapping),
                      "" if error is None else "%.4f" % error,
-                     "%.4f" % (sum(confidences) / len(confidences)) if confidences else ""])
+                     "%.4f" % (sum(confidences) / len(confidences)) if confidences else "",
+                     "exact"])
     return rows
 
 
@@ -267,13 +268,14 @@ def _new_rows_read(directory):
 
 
 def _read_as_written(root):
-    """A hand-made distances.csv: its error rate, time and confidence are drawn as written
-    (25 % of 4 overlapping queries wrong, 2.5 µs), not recomputed."""
+    """A hand-made distances.csv: its error rate, time, confidence and reference are drawn as
+    written (25 % of 4 overlapping queries wrong, 2.5 µs, judged against FCL), not
+    recomputed or inferred."""
     directory = os.path.join(root, "as_written")
     os.mkdir(directory)
     _write_csv(os.path.join(directory, "distances.csv"), DISTANCE_COLUMNS,
-               [["m", 100, "adb", 0.99, 10, "", "1.0", 5, "2.5", 4, "25", "0.9"],
-                ["m", 100, "exact", "", "", "", "1.0", 5, "9", 4, "0", "1"]])
+               [["m", 100, "adb", 0.99, 10, "", "1.0", 5, "2.5", 4, "25", "0.9", "fcl"],
+                ["m", 100, "fcl", "", "", "", "1.0", 5, "9", 4, "0", "1", "fcl"]])
     _write_csv(os.path.join(directory, "summary.csv"), SUMMARY_COLUMNS, [])
     data = Dataset(directory)
     with contextlib.redirect_stdout(io.StringIO()):
@@ -281,7 +283,8 @@ def _read_as_written(root):
         data.read_summary()
     point = data.per_distance[("m", 100, Setting("adb", 0.99, 10))][1.0]
     return (point.error_pct == 25.0 and point.mean_us == 2.5 and point.queries == 5
-            and point.overlapping == 4 and point.mean_confidence == 0.9)
+            and point.overlapping == 4 and point.mean_confidence == 0.9
+            and data.reference_label() == "reference: FCL (no exact rows)")
 
 
 def main():

@@ -3,6 +3,7 @@
 #include "adb/bullet/frame_budget.h"
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "adb/core/errors.h"
@@ -17,6 +18,13 @@ void require(bool ok, const char* field, double value, const char* rule) {
 }
 
 }  // namespace
+
+std::optional<FrameSettings::Fronts> frontsNamed(const std::string& name) {
+  for (std::size_t i = 0; i < kFrontsNames.size(); ++i) {
+    if (name == kFrontsNames[i]) return static_cast<FrameSettings::Fronts>(i);
+  }
+  return std::nullopt;
+}
 
 void validate(const FrameSettings& s) {
   require(!std::isnan(s.budgetMicros) && s.budgetMicros >= 0.0, "budgetMicros", s.budgetMicros,

@@ -301,7 +301,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
       const std::uint64_t wanted = expectedCost(last, kFirstGrant);
       const std::uint64_t grant = std::min(wanted, share(settings, waiting));
       // The time cap is what is left of the step: the share is in the grant.
-      query(pair, QueryRequest{grant, microsLeft(settings), false, grant < wanted}, settings);
+      query(pair, QueryRequest::fresh(grant, microsLeft(settings), grant < wanted), settings);
       --m_unqueried;
       // A decided pair's contacts are final: written now, their time is measured rather
       // than estimated by the time the budget runs out.
@@ -395,12 +395,12 @@ void FrameScheduler::refine(const FrameSettings& settings) {
       // A grant smaller than one expansion could only be used by overshooting the step.
       const std::uint64_t grant = std::min(more, left);
       if (grant < kNodePairsPerExpansion || !(micros > 0.0)) continue;
-      progress = query(pair, QueryRequest{grant, micros, true, false}, settings);
+      progress = query(pair, QueryRequest::resumed(grant, micros), settings);
     } else {
       // The best-first one starts again with the larger grant.
       const std::uint64_t grant = std::min(pair.grant + more, left);
       if (grant <= pair.grant || !(micros > 0.0)) continue;
-      progress = query(pair, QueryRequest{grant, micros, false, false}, settings);
+      progress = query(pair, QueryRequest::fresh(grant, micros), settings);
     }
     if (pair.decided()) {
       --m_undecided;

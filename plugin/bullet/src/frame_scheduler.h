@@ -16,13 +16,23 @@
 
 namespace adb::detail {
 
-/// One query of a mesh-mesh pair: what it may spend and how it goes on.
+/// One query of a mesh-mesh pair: what it may spend and how it goes on. Made by name
+/// (fresh, resumed), not from a row of flags.
 struct QueryRequest {
   std::uint64_t grant = 0;  ///< node pairs
   double micros = 0.0;      ///< time cap: what is left of the step (infinite: none)
   bool resume = false;      ///< go on from where the pair's last query stopped
   /// Granted less than it wants: a new exact query then descends deepest first.
   bool starved = false;
+
+  /// A query from the roots; `starved` as above.
+  static QueryRequest fresh(std::uint64_t grant, double micros, bool starved = false) {
+    return QueryRequest{grant, micros, false, starved};
+  }
+  /// The pair's last query, given `grant` more.
+  static QueryRequest resumed(std::uint64_t grant, double micros) {
+    return QueryRequest{grant, micros, true, false};
+  }
 };
 
 class FrameScheduler {

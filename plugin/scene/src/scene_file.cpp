@@ -200,13 +200,12 @@ WorldSpec readWorld(const Json& j, const std::string& file) {
   w.pMin = o.number("p_min", w.pMin, 0.0, 1.0);
   w.kMin = static_cast<int>(o.integer("k_min", w.kMin, 0, 1000000));
   w.pAccept = o.number("p_accept", w.pAccept, 0.0, 1.0);
-  const std::string fronts = o.string("fronts", "node_pair_budget");
-  if (fronts == "always") {
-    w.fronts = FrameSettings::Fronts::Always;
-  } else if (fronts == "never") {
-    w.fronts = FrameSettings::Fronts::Never;
-  } else if (fronts != "node_pair_budget") {
-    o.fail(o.at("fronts"), "'" + fronts + "' is not one of node_pair_budget, always, never");
+  const std::string fronts = o.string("fronts", kFrontsNames[0]);
+  if (const std::optional<FrameSettings::Fronts> named = frontsNamed(fronts)) {
+    w.fronts = *named;
+  } else {
+    o.fail(o.at("fronts"), "'" + fronts + "' is not one of " +
+                               joined({kFrontsNames.begin(), kFrontsNames.end()}));
   }
   if (const Json* b = o.find("bounds")) {
     Object bounds(*b, o.at("bounds"), file);

@@ -10,7 +10,7 @@ from typing import NamedTuple, Optional
 
 DISTANCE_COLUMNS = (
     "model", "triangles", "method", "p_min", "k_min", "budget_us", "distance", "queries",
-    "mean_us", "overlapping", "error_pct", "mean_confidence")
+    "mean_us", "overlapping", "error_pct", "mean_confidence", "reference")
 SUMMARY_COLUMNS = (
     "model", "triangles", "method", "p_min", "k_min", "budget_us", "queries", "overlapping",
     "mean_us", "p95_us", "error_pct", "mean_confidence", "mean_node_pairs",
@@ -173,6 +173,7 @@ class Dataset:
         self.skipped_rows = 0
         # (model, triangles, Setting) -> {distance: Point}, or None without distances.csv
         self.per_distance = None
+        self.references = set()  # what adb-tradeoff judged against: "exact", "fcl"
         self.summary = {}  # (model, triangles, Setting) -> SummaryRow
         self.cells = None  # (model, triangles) -> [count] * 512, or None without cells.csv
         # (model, triangles, Setting) -> [Bin] in bin order, or None without reliability.csv
@@ -196,6 +197,8 @@ class Dataset:
                                   int(float(cell["overlapping"])), _float(cell["error_pct"]),
                                   _float(cell["mean_confidence"]))
                     per_distance[key][float(cell["distance"])] = point
+                    if cell["reference"].strip():
+                        self.references.add(cell["reference"].strip())
                 except ValueError:
                     self.skipped_rows += 1
         if self.skipped_rows:
@@ -275,11 +278,12 @@ class Dataset:
         return sorted(found, key=Setting.sort_key)
 
     def reference_label(self):
-        """What adb-tradeoff judged against: its exact mode if it ran, else FCL."""
-        methods = {key[2].method for key in self._keys()}
-        if "exact" in methods:
+        """What adb-tradeoff judged against (distances.csv's reference column)."""
+        if self.references == {"exact"}:
             return "reference: own exact tree"
-        return "reference: FCL (no exact rows)" if "fcl" in methods else "no reference"
+        if self.references == {"fcl"}:
+            return "reference: FCL (no exact rows)"
+        return "reference: " + ", ".join(sorted(self.references)) if self.references else "no reference"
 
 
 def load(directory):

@@ -24,8 +24,11 @@
 // btCompoundShapes are scheduled like any other.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "adb/core/query.h"  // PoseDefect
 
@@ -71,6 +74,12 @@ struct FrameSettings {
   };
   Fronts fronts = Fronts::WithNodePairBudget;
 };
+
+/// FrameSettings::Fronts' names in scene files and on adb-demo's command line, by value.
+inline constexpr std::array<const char*, 3> kFrontsNames = {"node_pair_budget", "always",
+                                                             "never"};
+/// The Fronts named `name` (one of kFrontsNames), or nothing.
+std::optional<FrameSettings::Fronts> frontsNamed(const std::string& name);
 
 /// Throws SettingsError naming the first field out of range (Dispatcher::setFrameSettings
 /// calls it, as adb::validate(QuerySettings) is called for queries).
