@@ -66,9 +66,9 @@ TEST(ExactMode, CollectsEveryIntersectingTrianglePair) {
   for (const Triangle& ta : mesh.triangles()) {
     for (const Triangle& tb : mesh.triangles()) {
       expected += trianglesIntersect(
-          test::place(p.a, mesh.vertices()[ta[0]]), test::place(p.a, mesh.vertices()[ta[1]]),
-          test::place(p.a, mesh.vertices()[ta[2]]), test::place(p.b, mesh.vertices()[tb[0]]),
-          test::place(p.b, mesh.vertices()[tb[1]]), test::place(p.b, mesh.vertices()[tb[2]]));
+          p.a.apply(mesh.vertices()[ta[0]]), p.a.apply(mesh.vertices()[ta[1]]),
+          p.a.apply(mesh.vertices()[ta[2]]), p.b.apply(mesh.vertices()[tb[0]]),
+          p.b.apply(mesh.vertices()[tb[1]]), p.b.apply(mesh.vertices()[tb[2]]));
     }
   }
   ASSERT_GT(expected, 0u);

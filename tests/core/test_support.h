@@ -13,18 +13,15 @@ namespace adb::test {
 /// Every seed in the tests is fixed: a failure reproduces.
 inline constexpr std::uint64_t kSeed = 20261121;
 
-/// World coordinates of a mesh vertex under a pose.
-inline Vec3 place(const Pose& p, const Vec3& x) { return p.rotation * x + p.translation; }
-
 /// The oracle: all triangle pairs of the two posed meshes, no hierarchy, no early culling
 /// beyond the exact test itself. O(n m): keep meshes small.
 inline bool bruteForceCollide(const TriangleMesh& a, const Pose& pa, const TriangleMesh& b,
                               const Pose& pb) {
   std::vector<Vec3> wb(b.vertices().size());
-  for (std::size_t i = 0; i < wb.size(); ++i) wb[i] = place(pb, b.vertices()[i]);
+  for (std::size_t i = 0; i < wb.size(); ++i) wb[i] = pb.apply(b.vertices()[i]);
   for (const Triangle& ta : a.triangles()) {
-    const Vec3 a0 = place(pa, a.vertices()[ta[0]]), a1 = place(pa, a.vertices()[ta[1]]),
-               a2 = place(pa, a.vertices()[ta[2]]);
+    const Vec3 a0 = pa.apply(a.vertices()[ta[0]]), a1 = pa.apply(a.vertices()[ta[1]]),
+               a2 = pa.apply(a.vertices()[ta[2]]);
     for (const Triangle& tb : b.triangles()) {
       if (trianglesIntersect(a0, a1, a2, wb[tb[0]], wb[tb[1]], wb[tb[2]])) return true;
     }

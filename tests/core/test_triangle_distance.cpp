@@ -104,7 +104,7 @@ std::set<std::pair<std::uint32_t, std::uint32_t>> pairsWithin(const AdbTree& tre
   const auto& v = tree.localVertices();
   const auto& t = tree.triangles();
   const auto world = [&](const Pose& p, std::uint32_t tri, int k) {
-    return test::place(p, v[t[tri][k]] + tree.origin());
+    return p.apply(v[t[tri][k]] + tree.origin());
   };
   for (std::uint32_t i = 0; i < t.size(); ++i) {
     for (std::uint32_t j = 0; j < t.size(); ++j) {
