@@ -189,7 +189,10 @@ bool ChildPairs::overlap(int i, int j) {
 }
 
 double ChildPairs::overlapDepth(int i, int j) {
-  if (!overlap(i, j)) return -1.0;
+  return overlap(i, j) ? boxDepth(i, j) : -1.0;
+}
+
+double ChildPairs::boxDepth(int i, int j) const {
   const PosedNode& pa = m_a[i];
   const PosedNode& pb = m_b[j];
   const Vec3 inA = pa.h + pb.hOther - (pb.cOther - pa.c).cwiseAbs();

@@ -72,6 +72,9 @@ class ChildPairs {
   /// overlap(), and for overlapping nodes how deeply their boxes overlap (>= 0: the smallest
   /// overlap along the six face axes); negative when they are apart.
   double overlapDepth(int i, int j);
+  /// How deeply the boxes of a pair known to overlap (by overlap() or test()) overlap: >= 0,
+  /// the smallest overlap along the six face axes. Does not test again.
+  double boxDepth(int i, int j) const;
   /// Every test of overlap() measured instead of decided: the largest of the signed
   /// distances by which the face axes and slabs separate the two nodes (beyond the slack).
   /// > 0: apart by at least that much; <= 0: overlapping, each test short of separating by

@@ -535,14 +535,17 @@ struct Traversal::Impl {
       for (int j = 0; j < x.countB; ++j) {
         ++work.nodePairs;
         ChildTest t{x.ca[i], x.cb[j], false, 0.0};
-        if (measure) {
+        double d = -1.0;  // the boxes' overlap depth, -1 when apart
+        if (measure) {    // one test: its answer is overlap()'s, and the pair is mapped
           const detail::PairTest r = pairs.test(i, j);
           t.overlaps = r.overlaps;
           t.separation = r.separation;
+          if (t.overlaps) d = pairs.boxDepth(i, j);
+        } else {
+          d = pairs.overlapDepth(i, j);
+          t.overlaps = d >= 0.0;
         }
-        const double d = pairs.overlapDepth(i, j);  // -1 when apart
         const float depth = static_cast<float>(d);
-        t.overlaps = d >= 0.0;
         int k = count++;
         for (; k > 0 && key[k - 1] > depth; --k) {
           sorted[k] = sorted[k - 1];
