@@ -27,10 +27,9 @@
 // samples hits per contact region (hitsPerRegion): once a region holds its quota, its remaining
 // pairs are skipped at no cost, in either mode.
 //
-// Each expansion poses the (up to two) children of each node at most once, lazily
-// (pair_probability.h's ChildPairs), and tests the up to four child pairs on those: a child
-// meets two children of the other node, and mapping boxes between frames is most of a pair
-// test's cost.
+// Each expansion tests the up to four child pairs together (pair_kernel.h): a child meets two
+// children of the other node, so each box is posed in the other frame once, and the tests of
+// one child against both children of the other run in one register.
 #include "adb/core/query.h"
 
 #include <algorithm>
@@ -460,8 +459,8 @@ struct Traversal::Impl {
     return x;
   }
 
-  detail::ChildPairs pairsOf(const Expansion& x) const {
-    return detail::ChildPairs(*a.tree, x.ca, x.countA, *b.tree, x.cb, x.countB, frame);
+  detail::PairKernel pairsOf(const Expansion& x) const {
+    return detail::PairKernel(*a.tree, x.ca, x.countA, *b.tree, x.cb, x.countB, frame);
   }
 
   bool bothLeaves(const Entry& e) const {
@@ -512,7 +511,7 @@ struct Traversal::Impl {
   }
 
   // The child pairs of an expansion in the order exact mode pops them, each with whether it
-  // overlaps and, with `measure`, how far apart or deep (ChildPairs::separation, for the
+  // overlaps and, with `measure`, how far apart or deep (PairKernel::measure, for the
   // fronts). Deepest first (ExactDescent), the deepest box overlap comes first: a budget that
   // cuts the descent has then seen the deepest contacts, the ones that keep bodies apart.
   // Otherwise the trees' order reversed (the stack pops the last child first), which samples
@@ -526,61 +525,47 @@ struct Traversal::Impl {
     double separation;
   };
   int orderedChildren(const Expansion& x, bool measure, ChildTest out[4]) {
-    detail::ChildPairs pairs = pairsOf(x);
-    if (!deepestFirst) return inTreeOrder(pairs, x, measure, out);
-    ChildTest sorted[4];
-    float key[4];  // ascending: the pop order is its reverse
-    int count = 0;
+    detail::PairKernel pairs = pairsOf(x);
+    double separation[4] = {0.0, 0.0, 0.0, 0.0};
+    const unsigned mask = measure ? pairs.measure(separation) : pairs.overlapMask();
+    const int count = x.countA * x.countB;
+    work.nodePairs += static_cast<std::uint64_t>(count);
+    // In the trees' order, last child first: each pair goes straight to its place.
+    int k = count;
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
-        ++work.nodePairs;
-        ChildTest t{x.ca[i], x.cb[j], false, 0.0};
-        double d = -1.0;  // the boxes' overlap depth, -1 when apart
-        if (measure) {    // one test: its answer is overlap()'s, and the pair is mapped
-          const detail::PairTest r = pairs.test(i, j);
-          t.overlaps = r.overlaps;
-          t.separation = r.separation;
-          if (t.overlaps) d = pairs.boxDepth(i, j);
-        } else {
-          d = pairs.overlapDepth(i, j);
-          t.overlaps = d >= 0.0;
-        }
-        const float depth = static_cast<float>(d);
-        int k = count++;
-        for (; k > 0 && key[k - 1] > depth; --k) {
+        const int p = detail::PairKernel::index(i, j);
+        out[--k] = ChildTest{x.ca[i], x.cb[j], ((mask >> p) & 1u) != 0, separation[p]};
+      }
+    }
+    if (deepestFirst && mask != 0) sortDeepestLast(pairs, x, out, count);
+    return count;
+  }
+
+  // Deepest first: the pairs sorted by their boxes' overlap depth, the deepest last (the
+  // stack pops it first); ties keep the trees' order. Pairs apart count as depth -1.
+  static void sortDeepestLast(const detail::PairKernel& pairs, const Expansion& x,
+                              ChildTest out[4], int count) {
+    double depth[4];
+    pairs.boxDepths(depth);
+    ChildTest sorted[4];
+    float key[4];  // ascending: the pop order is its reverse
+    int n = 0;
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        const ChildTest& t = out[count - 1 - (i * x.countB + j)];
+        const float d =
+            t.overlaps ? static_cast<float>(depth[detail::PairKernel::index(i, j)]) : -1.0f;
+        int k = n++;
+        for (; k > 0 && key[k - 1] > d; --k) {
           sorted[k] = sorted[k - 1];
           key[k] = key[k - 1];
         }
         sorted[k] = t;
-        key[k] = depth;
+        key[k] = d;
       }
     }
     for (int k = 0; k < count; ++k) out[k] = sorted[count - 1 - k];
-    return count;
-  }
-
-  // orderedChildren in the trees' order: no keys to sort by, so each pair goes straight to
-  // its place, last child first (the hot path of exact mode: no copies).
-  int inTreeOrder(detail::ChildPairs& pairs, const Expansion& x, bool measure, ChildTest out[4]) {
-    int k = x.countA * x.countB;
-    const int count = k;
-    for (int i = 0; i < x.countA; ++i) {
-      for (int j = 0; j < x.countB; ++j) {
-        ++work.nodePairs;
-        ChildTest& t = out[--k];
-        t.a = x.ca[i];
-        t.b = x.cb[j];
-        if (measure) {
-          const detail::PairTest r = pairs.test(i, j);
-          t.overlaps = r.overlaps;
-          t.separation = r.separation;
-        } else {
-          t.overlaps = pairs.overlap(i, j);
-          t.separation = 0.0;
-        }
-      }
-    }
-    return count;
   }
 
   // Exact mode's expansion: the overlapping children go on the stack, the first to pop last.
@@ -753,7 +738,7 @@ struct Traversal::Impl {
 
   // The certificate of a pair just tested, counted from the front's reference pose: its
   // answer holds for any pose within |measured| - motion of the reference (stored with
-  // `consumed` added). The answer is overlap()'s (runExact's, ChildPairs::test); a measure
+  // `consumed` added). The answer is overlap()'s (runExact's, PairKernel::measure); a measure
   // that disagrees within rounding certifies nothing.
   float certify(bool overlaps, double separation) const {
     const double held = overlaps ? -separation - motion : separation - motion;
@@ -763,10 +748,11 @@ struct Traversal::Impl {
 
   bool testPair(detail::FrontEntry& c) {
     ++work.nodePairs;
-    const detail::PairTest t =
-        detail::ChildPairs(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame).test(0, 0);
-    c.certificate = certify(t.overlaps, t.separation);
-    return t.overlaps;
+    double separation[4];
+    const bool overlaps =
+        detail::PairKernel(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame).measure(separation) != 0;
+    c.certificate = certify(overlaps, separation[0]);
+    return overlaps;
   }
 
   // Appends an entry to the record; returns where it went.
@@ -913,13 +899,17 @@ struct Traversal::Impl {
       return false;
     }
     const Expansion x = expand(e);
-    detail::ChildPairs pairs = pairsOf(x);
+    detail::PairKernel pairs = pairsOf(x);
+    const unsigned mask = pairs.overlapMask();
+    detail::CellCounts counts[4];
+    if (mask != 0) pairs.cellCounts(mask, counts);
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
-        ++work.nodePairs;
-        if (!pairs.overlap(i, j)) continue;
+        ++work.nodePairs;  // counted up to the decision: an acceptance ends the expansion
+        const int p = detail::PairKernel::index(i, j);
+        if (((mask >> p) & 1u) == 0) continue;
         const detail::PairEstimate est = detail::estimateOverlapping(
-            pairs.a(i), x.depthA, pairs.b(j), x.depthB, a.maxDepth, b.maxDepth);
+            counts[p], x.depthA, x.depthB, a.maxDepth, b.maxDepth);
         if (!(est.lower > 0.0) && settings.pruneImprobable) {  // paper: only p > 0
           prunedMass += std::min(1.0, est.expected);
           prunedExpected += est.expected;

@@ -5,7 +5,7 @@
 // each with a *certificate*: how far its boxes and slabs were apart (> 0), or how deeply
 // every one of those tests overlapped (< 0), at a reference pose of the two trees. Under a
 // rigid motion that moves no point of either tree by more than d (each seen from the other's
-// frame), every test's value changes by at most d (ChildPairs::separation): a pair whose
+// frame), every test's value changes by at most d (PairKernel::measure): a pair whose
 // certificate exceeds d has the answer it had, without a test. The next query walks the
 // recorded pairs in the same order and tests only those whose certificate the motion has
 // used up; it descends afresh where a pair that was apart now overlaps and drops what lies

@@ -1,0 +1,233 @@
+// Internal: the pair kernel — the up to 2 x 2 child pairs of one expansion, tested together.
+//
+// An expansion of (A, B) tests each of A's two children against each of B's: four pairs over
+// four boxes. The kernel poses each box once in the other tree's frame, with the two children
+// of a node in the two lanes of one register (lanes.h), and runs a test for both children of B
+// against one child of A in one instruction. It replaces a pair-at-a-time test (posing lazily,
+// branching at every axis) for both traversal modes, and computes each value by the same
+// expression in the same order, so every answer is the one the pair-at-a-time test gave, bit
+// for bit (the reference in internal_tests/reference_child_pairs.h checks it).
+//
+// The tests, in the order that rejects most pairs soonest (measured in docs/core-results.md):
+// the two boxes on A's face axes, on B's face axes, then each node's slab (NodeDistribution)
+// against the other's box. A curved sheet's nodes are thin along their mean normal, so the
+// slab rejects near misses the boxes cannot. The 9 edge-edge axes would prune a few more
+// pairs at twice the cost. Touching counts as overlapping, within the frame's slack: a pair
+// whose triangles could meet is never pruned.
+//
+// Pair (i, j), A's node i against B's node j, is index 2 i + j of every output.
+#pragma once
+
+#include <cstdint>
+
+#include "adb/core/tree.h"
+#include "lanes.h"
+#include "relative_frame.h"
+
+namespace adb::detail {
+
+/// Up to two nodes of one tree (lane k holds node k; a single node fills both lanes), posed
+/// for the other tree.
+struct PosedNodes {
+  Lanes c[3], h[3];            // box centre and half extents, own local frame
+  Lanes cOther[3], hOther[3];  // centre and half extents of the box's AABB in the other frame
+  Lanes normal[3];             // slab normal, own frame
+  Lanes offset, halfWidth;     // slab: |normal . x - offset| <= halfWidth
+  Lanes reach[3];              // |slab normal| along the other frame's axes: a box of half
+                               // extents h' (other frame) reaches reach . h' along the normal
+  const NodeDistribution* d[2];
+  int count;
+};
+
+/// The cell model's counts for one overlapping pair (pair_probability.h reads them).
+struct CellCounts {
+  int s = 0, sA = 0, sB = 0;  // common cells, and possible collision cells of each side
+  double expected = 0.0;      // E[X] before rounding: rho_A rho_B s
+};
+
+class PairKernel {
+ public:
+  /// A's nodes ca[0..countA) against B's cb[0..countB), each count 1 or 2. Two nodes are
+  /// siblings (ca[1] == ca[0] + 1), as an expansion's children are.
+  PairKernel(const AdbTree& a, const std::uint32_t* ca, int countA, const AdbTree& b,
+             const std::uint32_t* cb, int countB, const RelativeFrame& frame)
+      : m_frame(frame) {
+    loadBoxes(a, ca, countA, m_a);
+    loadBoxes(b, cb, countB, m_b);
+    const LaneFrame& f = frame.lanes;
+    poseInOther(m_b, f.rBA, f.absBA, f.tBA);  // every pair's first test needs them
+  }
+
+  static constexpr int index(int i, int j) { return 2 * i + j; }
+
+  /// Bit index(i, j) set where the pair is not proven apart by any test (see the file
+  /// comment).
+  unsigned overlapMask() {
+    const Lanes slack = Lanes::all(m_frame.slack);
+    const unsigned present = m_b.count == 2 ? 3u : 1u;
+    // A's face axes: B's boxes in A's frame against A's node i.
+    unsigned mask = ~apartOnFacesOfA<0>(slack) & present;
+    if (m_a.count == 2) mask |= (~apartOnFacesOfA<1>(slack) & present) << 2;
+    if (mask == 0) return 0;
+    // B's face axes: A's node i in B's frame against B's boxes.
+    mapA();
+    if (mask & 3u) mask &= ~apartOnFacesOfB<0>(slack);
+    if (mask & 12u) mask &= ~(apartOnFacesOfB<1>(slack) << 2);
+    if (mask == 0) return 0;
+    // Slabs: each node's slab against the other's box.
+    slabs();
+    if (mask & 3u) mask &= ~apartBySlabs<0>(slack);
+    if (mask & 12u) mask &= ~(apartBySlabs<1>(slack) << 2);
+    return mask;
+  }
+
+  /// Every test of overlapMask() measured instead of decided, per pair: the largest of the
+  /// signed distances by which the face axes and slabs separate the two nodes (beyond the
+  /// slack). > 0: apart by at least that much; <= 0: overlapping, each test short of
+  /// separating by at least its magnitude. Under a rigid motion that moves no point of either
+  /// node by more than d (each in the other's frame), a value changes by at most d: the
+  /// certificate a traversal front keeps across steps. Returns overlapMask()'s answer, which
+  /// agrees with the sign outside the slack (inside it the mask decides).
+  unsigned measure(double separation[4]);
+  /// How deeply the boxes of each pair overlapMask() reported overlap: >= 0, the smallest
+  /// overlap along the six face axes (no test again). Only after overlapMask() reported one.
+  void boxDepths(double depth[4]) const;
+  /// The cell model's counts of each pair in `mask` (a subset of overlapMask()'s answer),
+  /// from the intersection of the two boxes in both frames (pair_probability.cpp says how).
+  void cellCounts(unsigned mask, CellCounts counts[4]) const;
+
+ private:
+  // Boxes of nodes ids[0..count) (the last repeated in an unused lane) in their own frame:
+  // centre and half extents in double, as Node::boxLo/boxHi give them.
+  static void loadBoxes(const AdbTree& tree, const std::uint32_t* ids, int count,
+                        PosedNodes& n) {
+    const Node& n0 = tree.nodes()[ids[0]];
+    const Node& n1 = tree.nodes()[ids[count - 1]];
+    Lanes first[4], last[4];  // lo x y z, hi x; then lo z, hi x y z
+    loadFloatPairs(n0.lo, n1.lo, first);
+    loadFloatPairs(n0.lo + 2, n1.lo + 2, last);
+    const Lanes lo[3] = {first[0], first[1], first[2]};
+    const Lanes hi[3] = {first[3], last[2], last[3]};
+    const Lanes half = Lanes::all(0.5);
+    for (int k = 0; k < 3; ++k) {
+      n.c[k] = half * (hi[k] + lo[k]);
+      n.h[k] = half * (hi[k] - lo[k]);
+    }
+    n.d[0] = &tree.distributions()[ids[0]];
+    n.d[1] = &tree.distributions()[ids[count - 1]];
+    n.count = count;
+  }
+
+  // x0 v0 + x1 v1 + x2 v2, summed left to right (as Eigen's dot and detail::mul sum).
+  static Lanes dot(Lanes x0, Lanes x1, Lanes x2, const Lanes v[3]) {
+    return x0 * v[0] + x1 * v[1] + x2 * v[2];
+  }
+
+  static void poseInOther(PosedNodes& n, const Lanes r[3][3], const Lanes absR[3][3],
+                          const Lanes t[3]) {
+    for (int row = 0; row < 3; ++row) {
+      n.cOther[row] = dot(r[row][0], r[row][1], r[row][2], n.c) + t[row];
+      n.hOther[row] = dot(absR[row][0], absR[row][1], absR[row][2], n.h);
+    }
+  }
+
+  // The slab normals mapped by rOther's transpose (the inverse rotation: into the other
+  // frame).
+  static void slabsOf(PosedNodes& n, const Lanes rOther[3][3]) {
+    Lanes slab[4];
+    loadFloatPairs(n.d[0]->normal, n.d[1]->normal, slab);
+    n.normal[0] = slab[0];
+    n.normal[1] = slab[1];
+    n.normal[2] = slab[2];
+    n.offset = slab[3];
+    n.halfWidth = Lanes::of(n.d[0]->halfWidth, n.d[1]->halfWidth);
+    for (int row = 0; row < 3; ++row) {
+      n.reach[row] = abs(dot(rOther[0][row], rOther[1][row], rOther[2][row], n.normal));
+    }
+  }
+
+  // A's nodes in B's frame: only once a pair has passed A's face axes (most pairs do not).
+  void mapA() {
+    if (m_mappedA) return;
+    const LaneFrame& f = m_frame.lanes;
+    poseInOther(m_a, f.rAB, f.absAB, f.tAB);
+    m_mappedA = true;
+  }
+
+  // A's slab normal is mapped into B's frame by rBA's transpose, B's by rAB's (each the
+  // inverse of the other to the pose tolerance, as the pair-at-a-time test had them).
+  void slabs() {
+    if (m_slabs) return;
+    slabsOf(m_a, m_frame.lanes.rBA);
+    slabsOf(m_b, m_frame.lanes.rAB);
+    m_slabs = true;
+  }
+
+  // Bits j of the pairs (I, j) that A's face axes prove apart.
+  template <int I>
+  unsigned apartOnFacesOfA(Lanes slack) const {
+    LaneMask apart = abs(m_b.cOther[0] - m_a.c[0].broadcast(I)) >
+                     (m_a.h[0].broadcast(I) + m_b.hOther[0]) + slack;
+    for (int k = 1; k < 3; ++k) {
+      apart = apart | (abs(m_b.cOther[k] - m_a.c[k].broadcast(I)) >
+                       (m_a.h[k].broadcast(I) + m_b.hOther[k]) + slack);
+    }
+    return static_cast<unsigned>(apart.bits());
+  }
+
+  // Bits j of the pairs (I, j) that B's face axes prove apart.
+  template <int I>
+  unsigned apartOnFacesOfB(Lanes slack) const {
+    LaneMask apart = abs(m_a.cOther[0].broadcast(I) - m_b.c[0]) >
+                     (m_b.h[0] + m_a.hOther[0].broadcast(I)) + slack;
+    for (int k = 1; k < 3; ++k) {
+      apart = apart | (abs(m_a.cOther[k].broadcast(I) - m_b.c[k]) >
+                       (m_b.h[k] + m_a.hOther[k].broadcast(I)) + slack);
+    }
+    return static_cast<unsigned>(apart.bits());
+  }
+
+  // Bits j of the pairs (I, j) that either node's slab proves apart from the other's box.
+  template <int I>
+  unsigned apartBySlabs(Lanes slack) const {
+    return static_cast<unsigned>(
+        ((slabOffsetOfA<I>() > slabReachOfA<I>() + slack) |
+         (slabOffsetOfB<I>() > slabReachOfB<I>() + slack))
+            .bits());
+  }
+
+  // How far B's box centres lie from A's node I's slab mid-plane, and the slab's half width
+  // plus B's boxes' radii along its normal.
+  template <int I>
+  Lanes slabOffsetOfA() const {
+    return abs(dot(m_a.normal[0].broadcast(I), m_a.normal[1].broadcast(I),
+                   m_a.normal[2].broadcast(I), m_b.cOther) -
+               m_a.offset.broadcast(I));
+  }
+  template <int I>
+  Lanes slabReachOfA() const {
+    return m_a.halfWidth.broadcast(I) + dot(m_a.reach[0].broadcast(I), m_a.reach[1].broadcast(I),
+                                            m_a.reach[2].broadcast(I), m_b.h);
+  }
+  // The same for B's slabs against A's node I's box.
+  template <int I>
+  Lanes slabOffsetOfB() const {
+    const Lanes centre[3] = {m_a.cOther[0].broadcast(I), m_a.cOther[1].broadcast(I),
+                             m_a.cOther[2].broadcast(I)};
+    return abs(dot(m_b.normal[0], m_b.normal[1], m_b.normal[2], centre) - m_b.offset);
+  }
+  template <int I>
+  Lanes slabReachOfB() const {
+    const Lanes half[3] = {m_a.h[0].broadcast(I), m_a.h[1].broadcast(I), m_a.h[2].broadcast(I)};
+    return m_b.halfWidth + dot(m_b.reach[0], m_b.reach[1], m_b.reach[2], half);
+  }
+
+  template <int I>
+  void measureRow(double slack, unsigned mask, double separation[4], unsigned& overlaps) const;
+
+  const RelativeFrame& m_frame;
+  PosedNodes m_a, m_b;
+  bool m_mappedA = false, m_slabs = false;
+};
+
+}  // namespace adb::detail
