@@ -145,7 +145,18 @@ struct Traversal::Impl {
   bool deepestFirst = false;  // exact mode descends the deepest overlap first
 
   // --- state kept between steps ------------------------------------------------------------
-  std::vector<Entry> heap;  // ADB: max-heap by p; exact: depth-first stack
+  std::vector<Entry> heap;  // ADB: max-heap by p; exact: the open pairs of a cut (openPairs())
+  // Exact mode's depth-first stack, 16 bytes an entry. A cut copies it into `heap` with the
+  // model's estimates; entries below `stackLowWater` (the lowest the stack has been since)
+  // were not popped, so their copies and estimates are kept: a query resumed step after step
+  // estimates only what it pushed since its last stop.
+  struct StackEntry {
+    std::uint32_t a, b, region;
+    std::uint16_t depthA, depthB;
+  };
+  static_assert(sizeof(StackEntry) == 16, "a stack entry is 16 bytes");
+  std::vector<StackEntry> stack;
+  std::size_t stackLowWater = 0;
   std::vector<Witness> witnesses;
   std::vector<std::uint32_t> regionHits;  // hits found per contact region
   QueryResult result;
@@ -219,6 +230,8 @@ struct Traversal::Impl {
     frame.slack += s.contactMargin;
     settings = s;
     heap.clear();
+    stack.clear();
+    stackLowWater = 0;
     witnesses.clear();
     regionHits.clear();
     result = QueryResult{};
@@ -476,38 +489,100 @@ struct Traversal::Impl {
         finish(false, 1.0, StopReason::Completed);
         return;
       }
-      heap.push_back(Entry{kUnestimated, 1.0f, 0, 0, childRegion(kNoRegion, 0, 0), 0, 0, 0.0f});
+      stack.push_back(StackEntry{0, 0, childRegion(kNoRegion, 0, 0), 0, 0});
     }
-    while (!heap.empty()) {
-      if (regionFull(heap.back().region)) {  // skipping costs no budget
-        heap.pop_back();
+    const Node* nodesA = a.tree->nodes().data();
+    const Node* nodesB = b.tree->nodes().data();
+    while (!stack.empty()) {
+      if (regionFull(stack.back().region)) {  // skipping costs no budget
+        popStack();
         ++work.pairsPopped;
         continue;
       }
       if (!budgetLeft()) {
         // The stack is what is left unexplored: estimated by the model, it gives the cut
         // query its confidence and the caller its plausible contacts (openPairs()).
-        estimateFrontier();
+        openStack();
         finish(exactHit, exactHit ? 1.0 : 1.0 - collisionProbability(evidence()), result.stop);
         return;
       }
-      const Entry e = heap.back();
-      heap.pop_back();
+      const StackEntry e = stack.back();
+      popStack();
       ++work.pairsPopped;
-      if (bothLeaves(e)) {
+      const Node& na = nodesA[e.a];
+      const Node& nb = nodesB[e.b];
+      if (na.isLeaf() && nb.isLeaf()) {
         if (testLeaves(e.a, e.b, e.region)) {
           exactHit = true;
           if (hitEndsQuery()) {
-            heap.clear();  // decided: nothing is left open
+            stack.clear();  // decided: nothing is left open
+            heap.clear();
             finish(true, 1.0, hitStop());
             return;
           }
         }
         continue;
       }
-      pushOverlappingChildren(e);
+      pushOverlappingChildren(e, na, nb);
     }
+    heap.clear();
     finish(exactHit, 1.0, StopReason::Completed);
+  }
+
+  void popStack() {
+    stack.pop_back();
+    stackLowWater = std::min(stackLowWater, stack.size());
+  }
+
+  // Exact mode's expansion: the overlapping children go on the stack, the first to pop last.
+  // In the trees' order they are pushed as the kernel reports them; deepest first, sorted.
+  void pushOverlappingChildren(const StackEntry& e, const Node& na, const Node& nb) {
+    Expansion x;
+    x.countA = children(na, e.a, x.ca);
+    x.countB = children(nb, e.b, x.cb);
+    x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
+    x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+    if (deepestFirst) {
+      ChildTest kids[4];
+      for (int k = orderedChildren(x, false, kids); k-- > 0;) {
+        if (kids[k].overlaps) pushChild(kids[k].a, kids[k].b, e.region, x);
+      }
+      return;
+    }
+    detail::PairKernel pairs = pairsOf(x);
+    const unsigned mask = pairs.overlapMask();
+    work.nodePairs += static_cast<std::uint64_t>(x.countA * x.countB);
+    if (mask == 0) return;
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        if ((mask >> detail::PairKernel::index(i, j)) & 1u) pushChild(x.ca[i], x.cb[j], e.region, x);
+      }
+    }
+  }
+
+  void pushChild(std::uint32_t ia, std::uint32_t ib, std::uint32_t parentRegion,
+                 const Expansion& x) {
+    stack.push_back(StackEntry{ia, ib, childRegion(parentRegion, x.depthA, x.depthB),
+                               static_cast<std::uint16_t>(x.depthA),
+                               static_cast<std::uint16_t>(x.depthB)});
+  }
+
+  // A cut exact query's stack as its open pairs (`heap`), in stack order, with the model's
+  // estimates: pairs of full regions are resolved, not open, and are dropped from both.
+  void openStack() {
+    if (!regionHits.empty()) {
+      const auto full = [this](const StackEntry& e) { return regionFull(e.region); };
+      const auto firstFull = std::find_if(stack.begin(), stack.end(), full);
+      stackLowWater = std::min(stackLowWater, static_cast<std::size_t>(firstFull - stack.begin()));
+      stack.erase(std::remove_if(firstFull, stack.end(), full), stack.end());
+    }
+    heap.resize(std::min(stackLowWater, heap.size()));
+    for (std::size_t k = heap.size(); k < stack.size(); ++k) {
+      const StackEntry& e = stack[k];
+      heap.push_back(Entry{kUnestimated, 1.0f, e.a, e.b, e.region, e.depthA, e.depthB, 0.0f});
+    }
+    stackLowWater = stack.size();
+    estimateFrontier();
   }
 
   // The child pairs of an expansion in the order exact mode pops them, each with whether it
@@ -566,19 +641,6 @@ struct Traversal::Impl {
       }
     }
     for (int k = 0; k < count; ++k) out[k] = sorted[count - 1 - k];
-  }
-
-  // Exact mode's expansion: the overlapping children go on the stack, the first to pop last.
-  void pushOverlappingChildren(const Entry& e) {
-    const Expansion x = expand(e);
-    ChildTest kids[4];
-    for (int k = orderedChildren(x, false, kids); k-- > 0;) {
-      if (!kids[k].overlaps) continue;
-      heap.push_back(Entry{kUnestimated, 1.0f, kids[k].a, kids[k].b,
-                           childRegion(e.region, x.depthA, x.depthB),
-                           static_cast<std::uint16_t>(x.depthA),
-                           static_cast<std::uint16_t>(x.depthB), 0.0f});
-    }
   }
 
   // --- exact mode walking its front (QuerySettings::keepFront) ------------------------------
@@ -1049,7 +1111,8 @@ Evidence Traversal::evidence() const { return m_impl->evidence(); }
 
 std::size_t Traversal::capacityBytes() const {
   const Impl& m = *m_impl;
-  return m.heap.capacity() * sizeof(Entry) + m.witnesses.capacity() * sizeof(Witness) +
+  return m.heap.capacity() * sizeof(Entry) + m.stack.capacity() * sizeof(Impl::StackEntry) +
+         m.witnesses.capacity() * sizeof(Witness) +
          m.regionHits.capacity() * sizeof(std::uint32_t) +
          (m.front.capacity() + m.nextFront.capacity()) * sizeof(detail::FrontEntry) +
          m.frames.capacity() * sizeof(Impl::WalkFrame);
