@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 
@@ -171,6 +172,60 @@ TEST(ProbabilityCellBound, DepthRatio) {
   EXPECT_DOUBLE_EQ(cellIntersectionBound(3, 5, 10, 10), 0.4);
   EXPECT_DOUBLE_EQ(cellIntersectionBound(0, 0, 0, 0), 0.0);  // two single-leaf trees
   EXPECT_DOUBLE_EQ(cellIntersectionBound(10, 10, 10, 10), 1.0);
+}
+
+// The pre-test the traversal runs before Eq. 3 (collisionLowerBoundCouldExceed) never says
+// "cannot" where Eq. 3 exceeds the threshold: exhaustively over small bins, every depth ratio
+// of trees up to 60 levels deep in total and the thresholds users set, and over a million
+// random triples up to the largest grid. It must also reject most pairs at a high threshold,
+// or it would save nothing.
+const double kThresholds[] = {0.0, 0.1, 0.5, 0.9, 0.99, 0.999};
+
+TEST(ProbabilityEq3PreTest, NeverRejectsAnAcceptanceOverSmallBins) {
+  long checked = 0, rejected = 0, wrong = 0;
+  for (int s = 1; s <= 24; ++s) {
+    for (int sa = 0; sa <= s; ++sa) {
+      for (int sb = 0; sb <= s; ++sb) {
+        for (int total : {2, 5, 10, 20, 40, 60}) {
+          for (int depth = 0; depth <= total; ++depth) {
+            const double lb = cellIntersectionBound(depth, 0, total, 0);
+            const double eq3 = collisionLowerBound(s, sa, sb, lb);
+            for (double threshold : kThresholds) {
+              ++checked;
+              if (collisionLowerBoundCouldExceed(s, sa, sb, lb, threshold)) continue;
+              ++rejected;
+              if (eq3 > threshold) ++wrong;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(wrong, 0) << "of " << checked;
+  EXPECT_GT(rejected, checked / 3);  // measured: 47 %, thresholds of 0 included
+}
+
+TEST(ProbabilityEq3PreTest, NeverRejectsAnAcceptanceOverAMillionRandomTriples) {
+  std::mt19937_64 rng(test::kSeed);
+  std::uniform_int_distribution<int> bins(1, kMaxBins);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  long rejectedAt99 = 0, wrong = 0;
+  const int trials = 1000000;
+  for (int trial = 0; trial < trials; ++trial) {
+    const int s = trial % 2 == 0 ? bins(rng) : 1 + static_cast<int>(rng() % 200);
+    // Densities spread on a log scale: most pairs in a traversal are sparse.
+    const auto count = [&] {
+      return std::min(s, static_cast<int>(std::pow(static_cast<double>(s) + 1.0, unit(rng))));
+    };
+    const int sa = count(), sb = count();
+    const double lb = unit(rng);
+    const double threshold = kThresholds[trial % 6];
+    if (collisionLowerBoundCouldExceed(s, sa, sb, lb, threshold)) continue;
+    if (threshold == 0.99) ++rejectedAt99;
+    if (collisionLowerBound(s, sa, sb, lb) > threshold) ++wrong;
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(rejectedAt99, trials / 6 * 7 / 10);  // measured: 78 %
 }
 
 }  // namespace

@@ -35,6 +35,15 @@ struct CollisionEstimate {
 };
 CollisionEstimate estimateCollision(int s, int sA, int sB, double lb);
 
+/// Whether Eq. 3 (collisionLowerBound(s, sA, sB, lb)) could exceed `threshold`: false only
+/// where it cannot, so a caller that evaluates Eq. 3 only where this is true accepts exactly
+/// the pairs it would accept evaluating it everywhere. Eq. 3 > threshold needs an x <=
+/// min(sA, sB, 10) with 1 - (1 - lb)^x > threshold (computed as Eq. 3 computes it) and
+/// Pr[X >= x] > threshold at the smallest such x; the tail is bounded by Markov (mu / x) and
+/// Cantelli (sigma^2 / (sigma^2 + (x - mu)^2)) with a margin far above Eq. 3's rounding.
+/// About 20 operations, against Eq. 3's hundred or more.
+bool collisionLowerBoundCouldExceed(int s, int sA, int sB, double lb, double threshold);
+
 /// Paper §3.6.3: LB = (dA + dB) / (dmaxA + dmaxB), 0 when both trees are single leaves.
 double cellIntersectionBound(int depthA, int depthB, int maxDepthA, int maxDepthB);
 
