@@ -26,6 +26,7 @@ void addAdbTimeSettings(const Options& o, const std::shared_ptr<SharedTree>& sha
         s.pMin = p;
         s.kMin = k;
         s.budgetMicros = budget;
+        s.adbKey = o.adbKey;
         out.push_back(std::make_unique<AdbMethod>(shared, s, "adb"));
       }
     }
@@ -42,6 +43,7 @@ void addAdbWorkSettings(const Options& o, const std::shared_ptr<SharedTree>& sha
         s.pMin = p;
         s.kMin = k;
         s.budgetNodePairs = pairs;
+        s.adbKey = o.adbKey;
         out.push_back(std::make_unique<AdbMethod>(shared, s, workMethodName(pairs)));
       }
     }

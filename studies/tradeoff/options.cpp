@@ -281,6 +281,21 @@ void addMethodFlags(CLI::App& app, Options& o) {
                         "approximate ones (paper section 3.4)")
       ->disable_flag_override();
   tools::addValueOption(
+      app, "--adb-key", "eq3|table",
+      "what orders ADB's queue: 'table' (a table approximating Eq. 3,\n"
+      "bucket queue) or 'eq3' (Eq. 3 itself, binary heap): the same\n"
+      "acceptances, another order and cost",
+      [&o](const std::string& value) {
+        if (value == "table") {
+          o.adbKey = AdbKey::Table;
+        } else if (value == "eq3") {
+          o.adbKey = AdbKey::Eq3;
+        } else {
+          failValue("--adb-key", value, "expected eq3 or table");
+        }
+      },
+      o.adbKey == AdbKey::Table ? "table" : "eq3");
+  tools::addValueOption(
       app, "--budget-pairs", "LIST",
       "ADB work budgets in node pairs, positive integers (default: none);\n"
       "each N adds the methods 'adb-work:N', one per p_min x k_min",

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "adb/core/query.h"
 #include "shared/command_line.h"
 
 namespace adb::tradeoff {
@@ -36,6 +37,7 @@ struct Options {
   std::vector<double> budgetsUs;   ///< microseconds; +infinity is "none"
   std::vector<std::uint64_t> budgetPairs;  ///< ADB work budgets (node pairs); empty: none
   bool exactCounting = false;      ///< trees count possible collision cells exactly (paper 3.4)
+  AdbKey adbKey = QuerySettings{}.adbKey;  ///< the ADB queue's key (--adb-key)
   std::string outDir = "tradeoff-results";
   bool plots = true;
   int repeats = 3;                 ///< timed runs per query (after one untimed warm-up)

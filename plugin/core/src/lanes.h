@@ -56,6 +56,15 @@ inline Lanes select(LaneMask m, Lanes yes, Lanes no) {
   return {_mm_or_pd(_mm_and_pd(m.v, yes.v), _mm_andnot_pd(m.v, no.v))};
 }
 
+/// Each lane rounded towards zero; |lanes| < 2^31.
+inline Lanes truncated(Lanes x) { return {_mm_cvtepi32_pd(_mm_cvttpd_epi32(x.v))}; }
+/// Each lane as an int (integral lanes, |lanes| < 2^31).
+inline void toInts(Lanes x, int out[2]) {
+  const __m128i i = _mm_cvttpd_epi32(x.v);
+  out[0] = _mm_cvtsi128_si32(i);
+  out[1] = _mm_cvtsi128_si32(_mm_shuffle_epi32(i, 1));
+}
+
 /// Four consecutive floats of two records as four lanes: out[k] = (p0[k], p1[k]). Float to
 /// double is exact, so this is what converting each float gives.
 inline void loadFloatPairs(const float* p0, const float* p1, Lanes out[4]) {
@@ -106,6 +115,11 @@ inline Lanes select(LaneMask m, Lanes yes, Lanes no) {
 
 inline void loadFloatPairs(const float* p0, const float* p1, Lanes out[4]) {
   for (int k = 0; k < 4; ++k) out[k] = Lanes::of(p0[k], p1[k]);
+}
+inline Lanes truncated(Lanes x) { return {{std::trunc(x.v[0]), std::trunc(x.v[1])}}; }
+inline void toInts(Lanes x, int out[2]) {
+  out[0] = static_cast<int>(x.v[0]);
+  out[1] = static_cast<int>(x.v[1]);
 }
 
 #endif

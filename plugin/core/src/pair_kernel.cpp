@@ -8,28 +8,11 @@
 namespace adb::detail {
 namespace {
 
-// x is finite and >= 0 by construction; the cap keeps a corrupt value from overflowing. For
-// x >= 0 truncation is floor, which without SSE4.1 would be a library call per count.
-int roundCount(double x, int cap) {
-  if (!(x > 0.0)) return 0;
-  const double capped = std::min(x + 0.5, static_cast<double>(cap));
-  return static_cast<int>(capped);
-}
-
-// The counts of one pair from the cells its boxes' intersection touches (the coarser node's
-// cells); pair_probability.cpp's file comment gives the model.
-CellCounts countsOf(double touched, const NodeDistribution& a, const NodeDistribution& b) {
-  CellCounts n;
-  const bool aCoarser = a.side >= b.side;
-  n.s = std::max(1, roundCount(touched, kMaxBins));
-  const double rhoA =
-      aCoarser ? a.density : std::min(1.0, static_cast<double>(a.density) * b.side * a.invSide);
-  const double rhoB =
-      aCoarser ? std::min(1.0, static_cast<double>(b.density) * a.side * b.invSide) : b.density;
-  n.sA = std::min(n.s, roundCount(rhoA * n.s, kMaxBins));
-  n.sB = std::min(n.s, roundCount(rhoB * n.s, kMaxBins));
-  n.expected = rhoA * rhoB * n.s;
-  return n;
+// round(x) for x >= 0 (truncating x + 0.5: without SSE4.1, floor would be a library call per
+// count), 0 for x <= 0 or NaN, at most `cap`.
+Lanes roundCount(Lanes x, Lanes cap) {
+  const Lanes rounded = truncated(min(x + Lanes::all(0.5), cap));
+  return select(x > Lanes::all(0.0), rounded, Lanes::all(0.0));
 }
 
 }  // namespace
@@ -110,9 +93,27 @@ void PairKernel::cellCounts(unsigned mask, CellCounts counts[4]) const {
       inB = k == 0 ? cellsB : inB * cellsB;
     }
     const Lanes touched = min(inA, inB);
+    // The densities at the common cell size (pair_probability.cpp, step 3), then the counts.
+    const LaneMask aCoarser = sideA >= sideB;
+    const NodeDistribution& da = *m_a.d[i];
+    const Lanes densityA = Lanes::all(da.density), invA = Lanes::all(da.invSide);
+    const Lanes densityB = Lanes::of(m_b.d[0]->density, m_b.d[1]->density);
+    const Lanes invB = Lanes::of(m_b.d[0]->invSide, m_b.d[1]->invSide);
+    const Lanes rhoA = select(aCoarser, densityA, min(densityA * sideB * invA, one));
+    const Lanes rhoB = select(aCoarser, min(densityB * sideA * invB, one), densityB);
+    const Lanes cap = Lanes::all(kMaxBins);
+    const Lanes s = max(roundCount(touched, cap), one);
+    const Lanes sA = min(s, roundCount(rhoA * s, cap));
+    const Lanes sB = min(s, roundCount(rhoB * s, cap));
+    const Lanes expected = rhoA * rhoB * s;
+    int si[2], sAi[2], sBi[2];
+    toInts(s, si);
+    toInts(sA, sAi);
+    toInts(sB, sBi);
     for (int j = 0; j < m_b.count; ++j) {
       const int p = index(i, j);
-      if ((mask >> p) & 1u) counts[p] = countsOf(touched.lane(j), *m_a.d[i], *m_b.d[j]);
+      if (((mask >> p) & 1u) == 0) continue;
+      counts[p] = CellCounts{si[j], sAi[j], sBi[j], expected.lane(j)};
     }
   }
 }

@@ -184,26 +184,26 @@ CollisionEstimate estimateCollision(int s, int sA, int sB, double lb) {
   return {std::clamp(best, 0.0, 1.0), upper};
 }
 
-bool collisionLowerBoundCouldExceed(int s, int sA, int sB, double lb, double threshold) {
+int smallestPassingCells(double lb, double threshold) {
+  lb = std::isnan(lb) ? 0.0 : std::clamp(lb, 0.0, 1.0);
+  const double miss = 1.0 - lb;
+  // (1 - lb)^x multiplied up as Eq. 3 does: every term of Eq. 3 is at most its depth term (its
+  // tail is at most 1), bit for bit.
+  double missAll = 1.0;
+  for (int x = 1; x <= kMaxCollisionCells; ++x) {
+    missAll *= miss;
+    if (1.0 - missAll > threshold) return x;
+  }
+  return kMaxCollisionCells + 1;
+}
+
+bool collisionTailCouldExceed(int s, int sA, int sB, int x, double threshold) {
   // Rounding of Eq. 3's tail (a sum of at most ten terms, each exact to a few ulps) is below
   // 1e-14; the margin keeps the bound on the safe side of it.
   constexpr double kMargin = 1e-9;
   const Bins b = clampBins(s, sA, sB);
-  const int xMax = std::min({b.v, b.w, kMaxCollisionCells});
-  if (xMax <= 0) return false;  // Eq. 3 is 0
-  lb = std::isnan(lb) ? 0.0 : std::clamp(lb, 0.0, 1.0);
-  const double miss = 1.0 - lb;
-  // The smallest x whose depth term passes, with (1 - lb)^x multiplied up as Eq. 3 does: every
-  // term of Eq. 3 is at most its depth term (its tail is at most 1), bit for bit.
-  double missAll = 1.0;
-  int x = 0;
-  while (x < xMax) {
-    ++x;
-    missAll *= miss;
-    if (1.0 - missAll > threshold) break;
-  }
-  if (!(1.0 - missAll > threshold)) return false;
-  // Below t0 = v + w - u the tail is 1: Eq. 3 is at least this depth term.
+  if (x > std::min({b.v, b.w, kMaxCollisionCells})) return false;
+  // Below t0 = v + w - u the tail is 1: Eq. 3 is at least this x's depth term.
   const int t0 = std::max(0, b.v + b.w - b.u);
   if (x <= t0) return true;
   // Tails fall as x grows: Eq. 3 > threshold needs Pr[X >= x] > threshold at this x.
@@ -217,6 +217,10 @@ bool collisionLowerBoundCouldExceed(int s, int sA, int sB, double lb, double thr
     tail = std::min(tail, variance / (variance + k * k));  // Cantelli
   }
   return tail + kMargin > threshold;
+}
+
+bool collisionLowerBoundCouldExceed(int s, int sA, int sB, double lb, double threshold) {
+  return collisionTailCouldExceed(s, sA, sB, smallestPassingCells(lb, threshold), threshold);
 }
 
 double cellIntersectionBound(int depthA, int depthB, int maxDepthA, int maxDepthB) {

@@ -35,13 +35,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
 #include "adb/core/triangle_distance.h"
 #include "adb/core/triangle_test.h"
+#include "bucket_queue.h"
 #include "format_number.h"
 #include "pair_probability.h"
+#include "priority_table.h"
 #include "traversal_front.h"
 
 namespace adb {
@@ -51,6 +54,8 @@ using Clock = std::chrono::steady_clock;
 using Entry = OpenPair;
 constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+// Trees deeper than this (a depth must fit QueueEntry's byte) are ordered by Eq. 3.
+constexpr int kMaxQueueDepth = 255;
 // Exact mode's stack entries carry no estimate until a budget stop asks for one.
 constexpr float kUnestimated = -1.0f;
 
@@ -157,6 +162,20 @@ struct Traversal::Impl {
   static_assert(sizeof(StackEntry) == 16, "a stack entry is 16 bytes");
   std::vector<StackEntry> stack;
   std::size_t stackLowWater = 0;
+  // ADB mode with the table key (AdbKey::Table): the bucket queue, and running sums over it
+  // for the evidence of a stop. `heap` then mirrors it only when openPairs() asks.
+  struct QueueEntry {
+    std::uint32_t a, b, region;
+    std::uint8_t depthA, depthB;  // trees are balanced: at most 28 levels (tree_builder.cpp)
+    std::uint16_t expected;       // E[X] as a float's 16 bits after the sign (encodeExpected)
+  };
+  static_assert(sizeof(QueueEntry) == 16, "a queue entry is 16 bytes");
+  bool tableKey = false;
+  detail::BucketQueue<QueueEntry, detail::kPriorityBuckets> queue;
+  double openExpected = 0.0;  // sum of E[X] over the queue
+  double openDoubt = 0.0;     // sum of min(1, E[X]) over the queue
+  bool openStale = false;     // `heap` does not mirror the queue
+  const detail::PriorityTable* priorities = &detail::priorityTable();
   std::vector<Witness> witnesses;
   std::vector<std::uint32_t> regionHits;  // hits found per contact region
   QueryResult result;
@@ -232,6 +251,11 @@ struct Traversal::Impl {
     heap.clear();
     stack.clear();
     stackLowWater = 0;
+    queue.clear();
+    openExpected = openDoubt = 0.0;
+    openStale = false;
+    tableKey = s.mode == QueryMode::Adb && s.adbKey == AdbKey::Table &&
+               ta.maxDepth() <= kMaxQueueDepth && tb.maxDepth() <= kMaxQueueDepth;
     witnesses.clear();
     regionHits.clear();
     result = QueryResult{};
@@ -294,6 +318,8 @@ struct Traversal::Impl {
       runFront();
     } else if (settings.mode == QueryMode::Exact) {
       runExact();
+    } else if (tableKey) {
+      runAdbTable();
     } else {
       runAdb();
     }
@@ -918,6 +944,158 @@ struct Traversal::Impl {
     std::push_heap(heap.begin(), heap.end(), heapLess);
   }
 
+  // --- ADB mode with the table key ------------------------------------------------------
+  // E[X] to 8 bits of mantissa (0.4 %), rounded down: the value a pair adds to the running
+  // sums when pushed is the one it takes off when popped.
+  static std::uint16_t encodeExpected(double expected) {
+    if (!(expected > 0.0)) return 0;
+    const float f = static_cast<float>(expected);
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &f, sizeof bits);
+    return static_cast<std::uint16_t>(bits >> 15);  // the sign bit is 0
+  }
+  static double decodeExpected(std::uint16_t code) {
+    const std::uint32_t bits = std::uint32_t{code} << 15;
+    float f = 0.0f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+  }
+
+  void pushQueue(std::uint32_t ia, std::uint32_t ib, std::uint32_t region, int da, int db,
+                 double expected, int bucket) {
+    const QueueEntry e{ia, ib, region, static_cast<std::uint8_t>(da),
+                       static_cast<std::uint8_t>(db), encodeExpected(expected)};
+    const double x = decodeExpected(e.expected);
+    openExpected += x;
+    openDoubt += std::min(1.0, x);
+    queue.push(e, bucket);
+    openStale = true;
+  }
+
+  QueueEntry popQueue() {
+    int bucket = 0;
+    const QueueEntry e = queue.pop(bucket);
+    forgetOpen(e);
+    return e;
+  }
+
+  // Takes a pair that left the queue off the running sums (exactly 0 once it is empty).
+  void forgetOpen(const QueueEntry& e) {
+    openStale = true;
+    if (queue.empty()) {
+      openExpected = openDoubt = 0.0;
+      return;
+    }
+    const double x = decodeExpected(e.expected);
+    openExpected -= x;
+    openDoubt -= std::min(1.0, x);
+  }
+
+  void runAdbTable() {
+    if (!started) {
+      started = true;
+      ++work.nodePairs;
+      const detail::PairEstimate root = detail::estimatePair(a, 0, 0, b, 0, 0, frame);
+      if (!root.overlap) {
+        finish(false, 1.0, StopReason::Completed);
+        return;
+      }
+      pushQueue(0, 0, childRegion(kNoRegion, 0, 0), 0, 0, root.expected,
+                detail::kPriorityBuckets - 1);
+    }
+    while (!queue.empty()) {
+      if (!budgetLeft()) {
+        finishUncertain(result.stop);
+        return;
+      }
+      const QueueEntry e = popQueue();
+      ++work.pairsPopped;
+      if (!regionFull(e.region) && expandTable(e)) return;
+    }
+    finishUncertain(StopReason::Completed);
+  }
+
+  // expandAdb with the table key: the same pairs pruned and accepted (a pair's Eq. 3 > 0
+  // exactly when both sides have a possible collision cell at a depth term > 0, and Eq. 3 is
+  // evaluated wherever its pre-test says it could pass p_min); only the order differs.
+  bool expandTable(const QueueEntry& e) {
+    const Node& na = a.tree->nodes()[e.a];
+    const Node& nb = b.tree->nodes()[e.b];
+    if (na.isLeaf() && nb.isLeaf()) return testLeafPair(e.a, e.b, e.region);
+    Expansion x;
+    x.countA = children(na, e.a, x.ca);
+    x.countB = children(nb, e.b, x.cb);
+    x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
+    x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+    detail::PairKernel pairs = pairsOf(x);
+    const unsigned mask = pairs.overlapMask();
+    detail::CellCounts counts[4];
+    if (mask != 0) pairs.cellCounts(mask, counts);
+    const double lb = cellIntersectionBound(x.depthA, x.depthB, a.maxDepth, b.maxDepth);
+    const int column = detail::priorityColumn(lb);
+    const int passing = smallestPassingCells(lb, settings.pMin);  // Eq. 3's pre-test, part 1
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        ++work.nodePairs;  // counted up to the decision: an acceptance ends the expansion
+        const int p = detail::PairKernel::index(i, j);
+        if (((mask >> p) & 1u) == 0) continue;
+        const detail::CellCounts& c = counts[p];
+        const bool possible = c.sA > 0 && c.sB > 0 && lb > 0.0;
+        if (!possible && settings.pruneImprobable) {  // paper: only p > 0
+          prunedMass += std::min(1.0, c.expected);
+          prunedExpected += c.expected;
+          continue;
+        }
+        const bool leaves =
+            a.tree->nodes()[x.ca[i]].isLeaf() && b.tree->nodes()[x.cb[j]].isLeaf();
+        if (!leaves && possible && std::min(c.sA, c.sB) >= passing &&
+            collisionTailCouldExceed(c.s, c.sA, c.sB, passing, settings.pMin)) {
+          const double eq3 = collisionLowerBound(c.s, c.sA, c.sB, lb);
+          if (eq3 > settings.pMin && accept(x.ca[i], x.cb[j], eq3)) return true;
+        }
+        const int bucket = possible ? detail::priorityBucket(*priorities,
+                                                             static_cast<float>(c.expected), column)
+                                    : 0;
+        pushQueue(x.ca[i], x.cb[j], childRegion(e.region, x.depthA, x.depthB), x.depthA,
+                  x.depthB, c.expected, bucket);
+      }
+    }
+    return false;
+  }
+
+  // The open pairs of the table key's queue as OpenPairs, for openPairs(): each with its
+  // bucket's key for p and min(1, E[X]) for its doubt.
+  void mirrorQueue() {
+    if (!openStale) return;
+    heap.clear();
+    queue.forEachBucket([this](const std::vector<QueueEntry>& entries, int bucket) {
+      const float p = static_cast<float>(priorities->probability[bucket]);
+      for (auto it = entries.rbegin(); it != entries.rend(); ++it) {  // pop order
+        const float x = static_cast<float>(decodeExpected(it->expected));
+        heap.push_back(Entry{p, std::min(1.0f, x), it->a, it->b, it->region, it->depthA,
+                             it->depthB, x});
+      }
+    });
+    openStale = false;
+  }
+
+  Evidence queueEvidence() const {
+    Evidence ev;
+    double logMiss = 0.0;  // log prod (1 - p) over the open pairs
+    queue.forEachBucket([&](const std::vector<QueueEntry>& entries, int bucket) {
+      logMiss += static_cast<double>(entries.size()) * priorities->logMiss[bucket];
+      ev.bestOpen = std::max(ev.bestOpen, priorities->probability[bucket]);
+    });
+    ev.frontierUnion = -std::expm1(logMiss);
+    ev.frontierDoubt = std::max(0.0, openDoubt);
+    ev.expectedCells = std::max(0.0, openExpected) + prunedExpected;
+    ev.prunedDoubt = prunedMass;
+    ev.openPairs = static_cast<std::uint32_t>(std::min<std::size_t>(queue.size(), 0xFFFFFFFFu));
+    ev.collisionPairs = result.collisionPairs;
+    return ev;
+  }
+
+  // --- ADB mode with the Eq. 3 key --------------------------------------------------------
   void runAdb() {
     if (!started) {
       started = true;
@@ -950,16 +1128,7 @@ struct Traversal::Impl {
 
   // Expands one popped pair. Returns true when the query is decided.
   bool expandAdb(const Entry& e) {
-    if (bothLeaves(e)) {
-      if (testLeaves(e.a, e.b, e.region)) {
-        exactHit = true;
-        if (hitEndsQuery()) {  // (stopAtFirstHit: no region fills)
-          finish(true, 1.0, hitStop());
-          return true;
-        }
-      }
-      return false;
-    }
+    if (bothLeaves(e)) return testLeafPair(e.a, e.b, e.region);
     const Expansion x = expand(e);
     detail::PairKernel pairs = pairsOf(x);
     const unsigned mask = pairs.overlapMask();
@@ -989,6 +1158,15 @@ struct Traversal::Impl {
     return false;
   }
 
+  // A leaf pair popped in ADB mode: its triangles decide. Returns true when the query is.
+  bool testLeafPair(std::uint32_t ia, std::uint32_t ib, std::uint32_t region) {
+    if (!testLeaves(ia, ib, region)) return false;
+    exactHit = true;
+    if (!hitEndsQuery()) return false;  // (stopAtFirstHit: no region fills)
+    finish(true, 1.0, hitStop());
+    return true;
+  }
+
   // A collision pair (p > p_min). Returns true when it is the k_min-th: the query is decided.
   bool accept(std::uint32_t ia, std::uint32_t ib, double p) {
     ++result.collisionPairs;
@@ -1013,7 +1191,7 @@ struct Traversal::Impl {
     double p = 0.0;  // P(collision)
     if (exactHit) {
       p = 1.0;
-    } else if (!heap.empty() || prunedMass > 0.0 || why == StopReason::QualityReached) {
+    } else if (openCount() > 0 || prunedMass > 0.0 || why == StopReason::QualityReached) {
       Evidence ev = evidence();
       ev.quality = !isBudgetStop(why);
       ev.reachedKMin = why == StopReason::QualityReached;
@@ -1023,7 +1201,10 @@ struct Traversal::Impl {
     finish(collides, collides ? p : 1.0 - p, why);
   }
 
+  std::size_t openCount() const { return tableKey ? queue.size() : heap.size(); }
+
   Evidence evidence() const {
+    if (tableKey) return queueEvidence();
     Evidence ev;
     double miss = 1.0;  // prod (1 - p) over the open pairs
     for (const Entry& e : heap) {
@@ -1056,6 +1237,15 @@ struct Traversal::Impl {
   // was dropped: make_heap may reorder equal priorities, so a query run in steps pops in the
   // same order as one run at once unless regions (contact sampling) were dropped on the way.
   void dropFullRegionsFromHeap() {
+    if (tableKey) {
+      if (regionHits.empty()) return;
+      queue.removeIf([this](const QueueEntry& e) {
+        if (!regionFull(e.region)) return false;
+        forgetOpen(e);
+        return true;
+      });
+      return;
+    }
     if (dropFullRegions()) std::make_heap(heap.begin(), heap.end(), heapLess);
   }
 
@@ -1102,7 +1292,10 @@ const QueryResult& Traversal::step(const StepBudget& budget) { return m_impl->st
 bool Traversal::done() const { return m_impl->finished; }
 const QueryResult& Traversal::result() const { return m_impl->result; }
 const StepWork& Traversal::lastStep() const { return m_impl->work; }
-const std::vector<OpenPair>& Traversal::openPairs() const { return m_impl->heap; }
+const std::vector<OpenPair>& Traversal::openPairs() const {
+  m_impl->mirrorQueue();
+  return m_impl->heap;
+}
 const std::vector<Witness>& Traversal::witnesses() const {
   static const std::vector<Witness> kNone;
   return m_impl->result.collides ? m_impl->witnesses : kNone;
@@ -1112,6 +1305,7 @@ Evidence Traversal::evidence() const { return m_impl->evidence(); }
 std::size_t Traversal::capacityBytes() const {
   const Impl& m = *m_impl;
   return m.heap.capacity() * sizeof(Entry) + m.stack.capacity() * sizeof(Impl::StackEntry) +
+         m.queue.capacityBytes() +
          m.witnesses.capacity() * sizeof(Witness) +
          m.regionHits.capacity() * sizeof(std::uint32_t) +
          (m.front.capacity() + m.nextFront.capacity()) * sizeof(detail::FrontEntry) +

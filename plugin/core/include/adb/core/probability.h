@@ -44,6 +44,13 @@ CollisionEstimate estimateCollision(int s, int sA, int sB, double lb);
 /// About 20 operations, against Eq. 3's hundred or more.
 bool collisionLowerBoundCouldExceed(int s, int sA, int sB, double lb, double threshold);
 
+/// The pre-test in two parts, for a caller that tests many pairs at one depth term: the
+/// smallest x <= kMaxCollisionCells with 1 - (1 - lb)^x > threshold (kMaxCollisionCells + 1
+/// if none), then for a pair with min(sA, sB) >= that x, the tail's part. The pair could pass
+/// exactly when both do.
+int smallestPassingCells(double lb, double threshold);
+bool collisionTailCouldExceed(int s, int sA, int sB, int x, double threshold);
+
 /// Paper §3.6.3: LB = (dA + dB) / (dmaxA + dmaxB), 0 when both trees are single leaves.
 double cellIntersectionBound(int depthA, int depthB, int maxDepthA, int maxDepthB);
 

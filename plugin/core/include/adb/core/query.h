@@ -58,6 +58,17 @@ enum class ExactDescent {
   DeepestFirst,
 };
 
+/// ADB mode: what orders the queue of node pairs.
+enum class AdbKey {
+  /// A table that approximates Eq. 3 by the pair's expected collision cells and its depth term,
+  /// in a bucket queue: a few operations a pair. Acceptance (p > pMin) still evaluates Eq. 3
+  /// where a cheap bound says it could pass, so it accepts what Eq3 accepts.
+  Table,
+  /// Eq. 3 itself, evaluated for every pair, in a binary heap: the paper's order, kept to
+  /// separate what the order changes from what the cost changes.
+  Eq3,
+};
+
 struct QuerySettings {
   QueryMode mode = QueryMode::Adb;
   /// A node pair with probability above pMin is a collision pair (paper: 0.5, 0.9, 0.99).
@@ -99,6 +110,8 @@ struct QuerySettings {
   int regionDepth = 8;
   /// Exact mode's descent order (ADB mode follows its probabilities).
   ExactDescent descent = ExactDescent::Auto;
+  /// ADB mode's queue key.
+  AdbKey adbKey = AdbKey::Eq3;
   /// Contact margin, in the trees' (world) units, >= 0: triangle pairs closer than this count
   /// as hits too (Witness::distance > 0), so that a contact can be made before the meshes
   /// touch, as Bullet's convex algorithms do within their breaking threshold. `collides`
