@@ -18,15 +18,17 @@ double logOf(double x) {
 }
 
 // Fitted by `build/bin/adb-calibrate --rotations 40` on the six generated models at 20k
-// triangles (docs/probability-model.md gives the run, and how the fit does on meshes it never
-// saw). The expected collision cells and the doubt per open pair (the doubt's and the open
-// count's terms together) decide; the union and the best open bound add nothing beyond them.
-constexpr EstimateWeights kBudgetWeights{-6.01731, 0, 1.31387, 0, -1.90742, 0, 2.14884, 0};
+// triangles with the table key (AdbKey::Table, the default; docs/probability-model.md gives
+// the run, and how the fit does on meshes it never saw). The expected collision cells, the
+// doubt per open pair (the doubt's and the open count's terms together) and the union of the
+// open pairs' keys decide.
+constexpr EstimateWeights kBudgetWeights{-7.3904, 2.25443, 1.53382, 0, -2.26995, 0.0673833,
+                                         2.03818, 0};
 // P(the paper's answer is right) at quality stops: a model of collision itself answered worse
 // than the paper's rule there (knot 16.7 % wrong against 9.1 %); this one keeps the rule's
 // answer where it is right at least half the time and calibrates its confidence.
-constexpr EstimateWeights kQualityWeights{-3.65714, -3.78767, -2.82068, -0.507183,
-                                          2.93401,  1.20695,  2.00937, 19.438};
+constexpr EstimateWeights kQualityWeights{-4.11886, -2.75725, -2.89006, -0.421368,
+                                          3.00553,  0.424832, 2.0177,   19.9063};
 
 }  // namespace
 
