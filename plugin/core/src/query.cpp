@@ -175,6 +175,15 @@ struct Traversal::Impl {
   double openExpected = 0.0;  // sum of E[X] over the queue
   double openDoubt = 0.0;     // sum of min(1, E[X]) over the queue
   bool openStale = false;     // `heap` does not mirror the queue
+  // What an expansion at depth sum d needs besides its pairs, worked out on first use in a
+  // query (a division and up to ten multiplications, shared by every expansion at d).
+  struct DepthTerms {
+    double lb = 0.0;  // Eq. 3's depth term
+    int column = 0;   // its column of the priority table
+    int passing = 0;  // smallestPassingCells(lb, pMin)
+  };
+  std::vector<DepthTerms> depthTerms;
+  std::vector<bool> depthKnown;
   const detail::PriorityTable* priorities = &detail::priorityTable();
   std::vector<Witness> witnesses;
   std::vector<std::uint32_t> regionHits;  // hits found per contact region
@@ -256,6 +265,11 @@ struct Traversal::Impl {
     openStale = false;
     tableKey = s.mode == QueryMode::Adb && s.adbKey == AdbKey::Table &&
                ta.maxDepth() <= kMaxQueueDepth && tb.maxDepth() <= kMaxQueueDepth;
+    if (tableKey) {
+      const std::size_t sums = static_cast<std::size_t>(ta.maxDepth() + tb.maxDepth()) + 1;
+      depthTerms.resize(sums);
+      depthKnown.assign(sums, false);
+    }
     witnesses.clear();
     regionHits.clear();
     result = QueryResult{};
@@ -1031,9 +1045,10 @@ struct Traversal::Impl {
     const unsigned mask = pairs.overlapMask();
     detail::CellCounts counts[4];
     if (mask != 0) pairs.cellCounts(mask, counts);
-    const double lb = cellIntersectionBound(x.depthA, x.depthB, a.maxDepth, b.maxDepth);
-    const int column = detail::priorityColumn(lb);
-    const int passing = smallestPassingCells(lb, settings.pMin);  // Eq. 3's pre-test, part 1
+    const DepthTerms& terms = depthTermsOf(x.depthA, x.depthB);
+    const double lb = terms.lb;
+    const int column = terms.column;
+    const int passing = terms.passing;  // Eq. 3's pre-test, part 1
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
         ++work.nodePairs;  // counted up to the decision: an acceptance ends the expansion
@@ -1061,6 +1076,18 @@ struct Traversal::Impl {
       }
     }
     return false;
+  }
+
+  const DepthTerms& depthTermsOf(int depthA, int depthB) {
+    const std::size_t sum = static_cast<std::size_t>(depthA + depthB);
+    DepthTerms& t = depthTerms[sum];
+    if (!depthKnown[sum]) {
+      depthKnown[sum] = true;
+      t.lb = cellIntersectionBound(depthA, depthB, a.maxDepth, b.maxDepth);
+      t.column = detail::priorityColumn(t.lb);
+      t.passing = smallestPassingCells(t.lb, settings.pMin);
+    }
+    return t;
   }
 
   // The open pairs of the table key's queue as OpenPairs, for openPairs(): each with its
@@ -1305,7 +1332,7 @@ Evidence Traversal::evidence() const { return m_impl->evidence(); }
 std::size_t Traversal::capacityBytes() const {
   const Impl& m = *m_impl;
   return m.heap.capacity() * sizeof(Entry) + m.stack.capacity() * sizeof(Impl::StackEntry) +
-         m.queue.capacityBytes() +
+         m.queue.capacityBytes() + m.depthTerms.capacity() * sizeof(Impl::DepthTerms) +
          m.witnesses.capacity() * sizeof(Witness) +
          m.regionHits.capacity() * sizeof(std::uint32_t) +
          (m.front.capacity() + m.nextFront.capacity()) * sizeof(detail::FrontEntry) +
