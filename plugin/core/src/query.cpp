@@ -277,7 +277,10 @@ struct Traversal::Impl {
     prunedMass = prunedExpected = 0.0;
     budgeted = deepestFirst = false;
     work = StepWork{};
+    // (A front records the trees' or the deepest-first order; most cells first descends from
+    // the roots.)
     walking = s.keepFront && s.mode == QueryMode::Exact &&
+              s.descent != ExactDescent::MostCellsFirst &&
               ta.maxDepth() <= detail::kMaxFrontDepth && tb.maxDepth() <= detail::kMaxFrontDepth;
     if (walking) startFront(ta, tb);
   }
@@ -582,6 +585,10 @@ struct Traversal::Impl {
     x.countB = children(nb, e.b, x.cb);
     x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
     x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+    if (settings.descent == ExactDescent::MostCellsFirst) {
+      pushMostCellsLast(e, x);
+      return;
+    }
     if (deepestFirst) {
       ChildTest kids[4];
       for (int k = orderedChildren(x, false, kids); k-- > 0;) {
@@ -597,6 +604,36 @@ struct Traversal::Impl {
       for (int j = 0; j < x.countB; ++j) {
         if ((mask >> detail::PairKernel::index(i, j)) & 1u) pushChild(x.ca[i], x.cb[j], e.region, x);
       }
+    }
+  }
+
+  // MostCellsFirst: the overlapping children pushed by ascending E[X] (the most pops first);
+  // ties keep the trees' order.
+  void pushMostCellsLast(const StackEntry& e, const Expansion& x) {
+    detail::PairKernel pairs = pairsOf(x);
+    const unsigned mask = pairs.overlapMask();
+    work.nodePairs += static_cast<std::uint64_t>(x.countA * x.countB);
+    if (mask == 0) return;
+    detail::CellCounts counts[4];
+    pairs.cellCounts(mask, counts);
+    int order[4];
+    double key[4];
+    int n = 0;
+    for (int i = 0; i < x.countA; ++i) {
+      for (int j = 0; j < x.countB; ++j) {
+        const int p = detail::PairKernel::index(i, j);
+        if (((mask >> p) & 1u) == 0) continue;
+        int k = n++;
+        for (; k > 0 && key[k - 1] > counts[p].expected; --k) {
+          order[k] = order[k - 1];
+          key[k] = key[k - 1];
+        }
+        order[k] = p;
+        key[k] = counts[p].expected;
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      pushChild(x.ca[order[k] / 2], x.cb[order[k] % 2], e.region, x);
     }
   }
 

@@ -56,6 +56,11 @@ enum class ExactDescent {
   /// that cuts the descent has then seen the deepest contacts, the ones that keep bodies
   /// apart.
   DeepestFirst,
+  /// The child pair with the most expected collision cells (the model's E[X]) first: with
+  /// stopAtFirstHit, 21 to 34 % fewer node pairs than the trees' order on the generated models
+  /// (what a node-pair budget counts), about the same time, as the cell counts cost what the
+  /// pairs save (docs/core-results.md). Keeps no front (keepFront is ignored).
+  MostCellsFirst,
 };
 
 /// ADB mode: what orders the queue of node pairs.
