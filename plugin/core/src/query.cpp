@@ -2,15 +2,20 @@
 // run in steps by adb::Traversal.
 //
 //   traverse(A, B):                                  # ADB mode, paper Fig. 3 plus budgets
-//     q = max-heap by probability; k = 0; q.insert(rootA, rootB, 1)
+//     q = max-queue by priority; k = 0; q.insert(rootA, rootB, 1)
 //     while q not empty and budget left:
 //       (A, B) = q.pop()
 //       if A and B are leaves: test their triangles exactly; a hit is certain -> collision
 //       for all children A[i], B[j] (a leaf is its own only child):
-//         p = computeProb(A[i], B[j])                # pair_probability.cpp
+//         p = computeProb(A[i], B[j])                # pair_kernel.h, pair_probability.cpp
 //         if p > p_min and not both leaves: k += 1, keep as witness
 //                                          if k >= k_min: return collision
-//         if p > 0: q.insert(A[i], B[j], p)
+//         if p > 0: q.insert(A[i], B[j], priority)
+//
+// The priority (QuerySettings::adbKey) is by default a table that approximates Eq. 3 from E[X]
+// and the depth term, in a bucket queue (priority_table.h, bucket_queue.h); Eq. 3 itself is
+// then evaluated only where its pre-test says p could exceed p_min, so the same pairs are
+// accepted. AdbKey::Eq3 keeps the paper's order: Eq. 3 for every pair, in a binary heap.
 //     return the better-supported answer (see confidence below)
 //
 // Leaf pairs are never accepted on probability: the tree keeps triangles, so they are decided
