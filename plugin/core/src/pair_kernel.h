@@ -20,6 +20,7 @@
 
 #include <cstdint>
 
+#include "adb/core/probability.h"
 #include "adb/core/tree.h"
 #include "lanes.h"
 #include "relative_frame.h"
@@ -95,6 +96,16 @@ class PairKernel {
   /// The cell model's counts of each pair in `mask` (a subset of overlapMask()'s answer),
   /// from the intersection of the two boxes in both frames (pair_probability.cpp says how).
   void cellCounts(unsigned mask, CellCounts counts[4]) const;
+  /// overlapMask() and cellCounts() of its answer in one pass: each row is counted while its
+  /// posed boxes are at hand (ADB mode's expansion).
+  unsigned overlapMaskAndCounts(CellCounts counts[4]) {
+    const unsigned mask = overlapMask();
+    if (mask == 0) return 0;
+    const CellsOfB b = cellsOfB();
+    if (mask & 3u) countRow<0>(b, mask, counts);
+    if (mask & 12u) countRow<1>(b, mask, counts);
+    return mask;
+  }
 
  private:
   // Boxes of nodes ids[0..count) (the last repeated in an unused lane) in their own frame:
@@ -220,6 +231,79 @@ class PairKernel {
   Lanes slabReachOfB() const {
     const Lanes half[3] = {m_a.h[0].broadcast(I), m_a.h[1].broadcast(I), m_a.h[2].broadcast(I)};
     return m_b.halfWidth + dot(m_b.reach[0], m_b.reach[1], m_b.reach[2], half);
+  }
+
+  // B's side of the cell counts, shared by both rows: its boxes' bounds in both frames and
+  // its cells.
+  struct CellsOfB {
+    Lanes lo[3], hi[3];            // own frame
+    Lanes loOther[3], hiOther[3];  // A's frame
+    Lanes side, density, invSide;
+  };
+  CellsOfB cellsOfB() const {
+    CellsOfB b;
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = m_b.c[k] - m_b.h[k];
+      b.hi[k] = m_b.c[k] + m_b.h[k];
+      b.loOther[k] = m_b.cOther[k] - m_b.hOther[k];
+      b.hiOther[k] = m_b.cOther[k] + m_b.hOther[k];
+    }
+    Lanes cells[4];  // halfWidth, side, density, invSide
+    loadFloatPairs(&m_b.d[0]->halfWidth, &m_b.d[1]->halfWidth, cells);
+    b.side = cells[1];
+    b.density = cells[2];
+    b.invSide = cells[3];
+    return b;
+  }
+
+  // round(x) for x >= 0 (truncating x + 0.5: without SSE4.1, floor would be a library call
+  // per count), 0 for x <= 0 or NaN, at most `cap`.
+  static Lanes roundCount(Lanes x, Lanes cap) {
+    const Lanes rounded = truncated(min(x + Lanes::all(0.5), cap));
+    return select(x > Lanes::all(0.0), rounded, Lanes::all(0.0));
+  }
+
+  // The counts of the pairs (I, j) in `mask` (pair_probability.cpp, steps 1 to 4).
+  template <int I>
+  void countRow(const CellsOfB& b, unsigned mask, CellCounts counts[4]) const {
+    const Lanes one = Lanes::all(1.0);
+    const NodeDistribution& da = *m_a.d[I];
+    // The cell side is the coarser node's, per pair.
+    const Lanes sideA = Lanes::all(da.side);
+    const Lanes invA = Lanes::all(da.invSide);
+    const LaneMask aCoarser = sideA >= b.side;
+    const Lanes invCell = select(aCoarser, invA, b.invSide);
+    // Cells touched by the boxes' intersection in A's frame and in B's, at least one per axis.
+    Lanes inA{}, inB{};
+    for (int k = 0; k < 3; ++k) {
+      const Lanes ca = m_a.c[k].broadcast(I), ha = m_a.h[k].broadcast(I);
+      const Lanes cao = m_a.cOther[k].broadcast(I), hao = m_a.hOther[k].broadcast(I);
+      const Lanes extentA = min(ca + ha, b.hiOther[k]) - max(ca - ha, b.loOther[k]);
+      const Lanes extentB = min(b.hi[k], cao + hao) - max(b.lo[k], cao - hao);
+      const Lanes cellsA = max(extentA * invCell, one);
+      const Lanes cellsB = max(extentB * invCell, one);
+      inA = k == 0 ? cellsA : inA * cellsA;
+      inB = k == 0 ? cellsB : inB * cellsB;
+    }
+    const Lanes touched = min(inA, inB);
+    // The densities at the common cell size (step 3), then the counts.
+    const Lanes densityA = Lanes::all(da.density);
+    const Lanes rhoA = select(aCoarser, densityA, min(densityA * b.side * invA, one));
+    const Lanes rhoB = select(aCoarser, min(b.density * sideA * b.invSide, one), b.density);
+    const Lanes cap = Lanes::all(kMaxBins);
+    const Lanes s = max(roundCount(touched, cap), one);
+    const Lanes sA = min(s, roundCount(rhoA * s, cap));
+    const Lanes sB = min(s, roundCount(rhoB * s, cap));
+    const Lanes expected = rhoA * rhoB * s;
+    int si[2], sAi[2], sBi[2];
+    toInts(s, si);
+    toInts(sA, sAi);
+    toInts(sB, sBi);
+    for (int j = 0; j < m_b.count; ++j) {
+      const int p = index(I, j);
+      if (((mask >> p) & 1u) == 0) continue;
+      counts[p] = CellCounts{si[j], sAi[j], sBi[j], expected.lane(j)};
+    }
   }
 
   template <int I>

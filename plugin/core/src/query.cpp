@@ -1084,9 +1084,8 @@ struct Traversal::Impl {
     x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
     x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
     detail::PairKernel pairs = pairsOf(x);
-    const unsigned mask = pairs.overlapMask();
     detail::CellCounts counts[4];
-    if (mask != 0) pairs.cellCounts(mask, counts);
+    const unsigned mask = pairs.overlapMaskAndCounts(counts);
     const DepthTerms& terms = depthTermsOf(x.depthA, x.depthB);
     const double lb = terms.lb;
     const int column = terms.column;
