@@ -89,17 +89,8 @@ void queryArgs(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_QueryAdb)->Apply(queryArgs);
 BENCHMARK(BM_QueryExact)->Apply(queryArgs);
 
-// The fixed query set behind the cost per node pair (docs/probability-model.md section 6):
-// the knot at 20k triangles, distances 0.4 to 2.0 in steps of 0.1 with 50 rotations each
-// (seed 1): 850 poses, all queried twice, once per run. node_pairs is the total. Under callgrind, collide's inclusive instruction
-// count divided by the node_pairs counter is the cost of a node pair, repeatably on a shared
-// machine:
-//   valgrind --tool=callgrind --callgrind-out-file=cg build/bin/adb-bench-core
-//       --benchmark_filter=nodePairCost/adb   (one command line)
-//   callgrind_annotate --inclusive=yes cg | grep 'adb::collide('
-void nodePairCost(benchmark::State& state, adb::QueryMode mode) {
-  const adb::TriangleMesh& mesh = model("knot", 20000);
-  const adb::AdbTree tree(mesh);
+// 50 seeded benchmark poses at each distance 0.4, 0.5, ..., 2.0: 850 in all.
+std::vector<adb::PosePair> poseSet(const adb::TriangleMesh& mesh) {
   std::mt19937_64 rng(1);
   std::vector<adb::PosePair> poses;
   for (int step = 0; step <= 16; ++step) {
@@ -107,6 +98,21 @@ void nodePairCost(benchmark::State& state, adb::QueryMode mode) {
       poses.push_back(adb::benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng));
     }
   }
+  return poses;
+}
+
+// The fixed query set behind the cost per node pair (docs/probability-model.md section 6):
+// the knot at 20k triangles, distances 0.4 to 2.0 in steps of 0.1 with 50 rotations each
+// (seed 1): 850 poses, all queried twice, once per run. node_pairs is the total. Under
+// callgrind, collide's inclusive instruction count divided by the node_pairs counter is the
+// cost of a node pair, repeatably on a shared machine:
+//   valgrind --tool=callgrind --callgrind-out-file=cg build/bin/adb-bench-core
+//       --benchmark_filter=nodePairCost/adb   (one command line)
+//   callgrind_annotate --inclusive=yes cg | grep 'adb::collide('
+void nodePairCost(benchmark::State& state, adb::QueryMode mode) {
+  const adb::TriangleMesh& mesh = model("knot", 20000);
+  const adb::AdbTree tree(mesh);
+  const std::vector<adb::PosePair> poses = poseSet(mesh);
   adb::QuerySettings settings;
   settings.mode = mode;
   adb::QueryScratch scratch;
@@ -131,13 +137,7 @@ BENCHMARK_CAPTURE(nodePairCost, exact, adb::QueryMode::Exact)
 void exactFirstHit(benchmark::State& state, const char* name, adb::ExactDescent descent) {
   const adb::TriangleMesh& mesh = model(name, 20000);
   const adb::AdbTree tree(mesh);
-  std::mt19937_64 rng(1);
-  std::vector<adb::PosePair> poses;
-  for (int step = 0; step <= 16; ++step) {
-    for (int r = 0; r < 50; ++r) {
-      poses.push_back(adb::benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng));
-    }
-  }
+  const std::vector<adb::PosePair> poses = poseSet(mesh);
   adb::QuerySettings settings;
   settings.mode = adb::QueryMode::Exact;
   settings.stopAtFirstHit = true;

@@ -1047,15 +1047,20 @@ struct Traversal::Impl {
     openDoubt -= std::min(1.0, x);
   }
 
+  // The first step of either key: the roots tested and estimated. False when they are apart
+  // (the query is then answered).
+  bool testRoots(detail::PairEstimate& root) {
+    started = true;
+    ++work.nodePairs;
+    root = detail::estimatePair(a, 0, 0, b, 0, 0, frame);
+    if (!root.overlap) finish(false, 1.0, StopReason::Completed);
+    return root.overlap;
+  }
+
   void runAdbTable() {
     if (!started) {
-      started = true;
-      ++work.nodePairs;
-      const detail::PairEstimate root = detail::estimatePair(a, 0, 0, b, 0, 0, frame);
-      if (!root.overlap) {
-        finish(false, 1.0, StopReason::Completed);
-        return;
-      }
+      detail::PairEstimate root;
+      if (!testRoots(root)) return;
       pushQueue(0, 0, childRegion(kNoRegion, 0, 0), 0, 0, root.expected,
                 detail::kPriorityBuckets - 1);
     }
@@ -1166,13 +1171,8 @@ struct Traversal::Impl {
   // --- ADB mode with the Eq. 3 key --------------------------------------------------------
   void runAdb() {
     if (!started) {
-      started = true;
-      ++work.nodePairs;
-      const detail::PairEstimate root = detail::estimatePair(a, 0, 0, b, 0, 0, frame);
-      if (!root.overlap) {
-        finish(false, 1.0, StopReason::Completed);
-        return;
-      }
+      detail::PairEstimate root;
+      if (!testRoots(root)) return;
       // The paper inserts the roots with probability 1 so that they are expanded first; alone
       // in the queue they are popped first anyway, and the evidence needs their estimate
       // (Eq. 3 is 0 at depth 0, where LB = 0).
