@@ -188,6 +188,9 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, const QueryRequest& requ
     q.kMin = settings.kMin;
     q.pruneImprobable = false;  // complete means exact; cut leaves every open pair
     q.nodeWitnesses = false;    // the 64 witness slots are for triangle pairs
+    // A cut pair's open pairs become plausible contacts by their p (>= pAccept, softer the
+    // lower): Eq. 3 itself, not the table key's bucket (9 % wide).
+    q.adbKey = AdbKey::Eq3;
   } else {
     q.mode = QueryMode::Exact;
     // A pair the budget is about to cut (granted less than it wants) or cut last step
