@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev       # scene files
   libcli11-dev             # every executable's command line
   libpng-dev               # adb-demo --render frames
+  libtbb-dev               # oneTBB: adb's pair queries on a worker pool (FrameSettings::threads)
   python3-matplotlib       # plots of the study
 )
 

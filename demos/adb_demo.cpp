@@ -30,6 +30,7 @@ struct Options {
   std::vector<std::filesystem::path> meshes;
   std::string floor = "mesh";
   std::string fronts;
+  int threads = 1;
   int steps = 0;
   double budgetMicros = 0;
   std::uint64_t budgetPairs = 0;
@@ -78,6 +79,11 @@ void addOptions(CLI::App& app, Options& o) {
       ->check(CLI::IsMember(std::vector<std::string>(adb::kFrontsNames.begin(),
                                                      adb::kFrontsNames.end())));
 
+  app.add_option("--threads", o.threads,
+                 "threads for adb's pair queries: 0 all hardware threads, 1 none (default); "
+                 "the simulation is the same at any count")
+      ->check(CLI::Range(0, adb::kMaxThreads));
+
   app.add_flag("--render", o.run.render, "write DIR/frames/NNNNN.png, DIR/strip.png and "
                                          "DIR/movie.mp4 (with ffmpeg); needs --out");
   app.add_flag("--compare", o.run.compare,
@@ -116,6 +122,7 @@ void takeOverrides(const CLI::App& app, Options& o) {
   if (app.count("--k-min")) r.kMin = o.kMin;
   if (app.count("--p-accept")) r.pAccept = o.pAccept;
   if (app.count("--fronts")) r.fronts = *adb::frontsNamed(o.fronts);  // checked by the parser
+  if (app.count("--threads")) r.threads = o.threads;
 }
 
 adb::scene::Scene pileScene(Options& o) {

@@ -44,6 +44,7 @@ void applyOverrides(const SceneRunOptions& o, Scene& s) {
   if (o.pAccept) s.world.pAccept = *o.pAccept;
   if (o.noSoften) s.effects.softContacts = false;
   if (o.fronts) s.world.fronts = *o.fronts;
+  if (o.threads) s.world.threads = *o.threads;
 }
 
 std::string budgetText(const scene::BudgetSpec& b) {

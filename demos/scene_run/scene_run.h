@@ -34,6 +34,7 @@ struct SceneRunOptions {
   std::optional<int> kMin;
   bool noSoften = false;
   std::optional<adb::FrameSettings::Fronts> fronts;
+  std::optional<int> threads;
 };
 
 /// Runs the scene; the exit code: 0, 1 when a body was lost (out of world.bounds) at some

@@ -241,6 +241,14 @@ TEST(SceneFile, NonFiniteAndOutOfRangeNumbersAreRefused) {
   EXPECT_NE(std::string(fronts.what()).find("not one of node_pair_budget, always, never"),
             std::string::npos)
       << fronts.what();
+  EXPECT_EQ(errorOf(edited("\"p_accept\": 0.8", "\"p_accept\": 0.8, \"threads\": -1")).where(),
+            "world.threads");
+  EXPECT_EQ(errorOf(edited("\"p_accept\": 0.8", "\"p_accept\": 0.8, \"threads\": 1.5")).where(),
+            "world.threads");
+  EXPECT_EQ(parseScene(edited("\"p_accept\": 0.8", "\"p_accept\": 0.8, \"threads\": 2"),
+                       "scene.json")
+                .world.threads,
+            2);
   EXPECT_EQ(errorOf(edited("[5, 0.5, 5]", "[5, -0.5, 5]")).where(), "shapes.ground.half_extents");
   EXPECT_EQ(errorOf(edited("\"node_pairs\": 20000", "\"node_pairs\": -3")).where(),
             "world.budget.node_pairs");

@@ -36,6 +36,8 @@ void validate(const FrameSettings& s) {
           ">= 0");
   require(s.softCfm >= 0.0 && std::isfinite(s.softCfm), "softCfm", s.softCfm,
           "finite and >= 0");
+  require(s.threads >= 0 && s.threads <= kMaxThreads, "threads", s.threads,
+          "in [0, 256] (0: all hardware threads)");
 }
 
 }  // namespace adb

@@ -119,6 +119,8 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
   m_info = &info;
   m_start = Clock::now();
   m_stats = FrameStats{};
+  m_pool.configure(settings.threads);
+  m_stats.threads = static_cast<std::uint32_t>(m_pool.threads());
   m_stats.pairs = static_cast<std::uint32_t>(m_pairs.size());
   m_stats.badPoseBodies = static_cast<std::uint32_t>(m_badBodies.size());
   std::copy(m_badNamedPoses, m_badNamedPoses + m_badNamed, m_stats.badPoses);
@@ -181,6 +183,14 @@ std::uint64_t FrameScheduler::share(const FrameSettings& s, std::uint64_t waitin
 
 std::uint64_t FrameScheduler::query(DeferredPair& pair, const QueryRequest& request,
                                     const FrameSettings& settings) {
+  traverse(pair, request, settings);
+  return account(pair, request);
+}
+
+// The traversal of one query. It reads the settings and the pair's trees and writes only the
+// pair's own traversal, so the queries of different pairs may run on different threads.
+void FrameScheduler::traverse(DeferredPair& pair, const QueryRequest& request,
+                              const FrameSettings& settings) {
   QuerySettings q;
   if (bestFirst(settings)) {
     q.mode = QueryMode::Adb;
@@ -206,7 +216,14 @@ std::uint64_t FrameScheduler::query(DeferredPair& pair, const QueryRequest& requ
   q.keepFront = keepsFronts(settings);  // exact mode only: the core ignores it otherwise
   StepBudget budget;
   if (!unbudgeted(settings)) budget = StepBudget{request.grant, request.micros};
-  const QueryResult& r = pair.meshMesh().query(pair, q, budget, request.resume);
+  pair.meshMesh().query(pair, q, budget, request.resume);
+}
+
+// What a query did, counted on the calling thread in pair order: the cost model, the step's
+// statistics and the pair's scheduling state. Returns the work it did (node pairs, triangle
+// tests and pairs popped).
+std::uint64_t FrameScheduler::account(DeferredPair& pair, const QueryRequest& request) {
+  const QueryResult& r = pair.meshMesh().result();
   const StepWork& work = pair.meshMesh().lastStep();
   m_costs.measureQuery(work.nodePairs, work.seconds);
   // Total granted this step: a resumed query adds to what it had.
@@ -296,6 +313,10 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
                settings);
       --waiting;
     }
+    if (parallel(settings)) {
+      queryInParallel(group, settings);
+      continue;
+    }
     for (DeferredPair& pair : m_pairs) {
       if (anchored(pair) != group) continue;
       // What it needed last step and a quarter more (a pair's need grows while bodies
@@ -314,6 +335,45 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
         ++m_undecided;
       }
       --waiting;
+    }
+  }
+}
+
+// Whether this step's mesh-mesh queries run on the pool: only where their schedule does not
+// depend on each other's outcome (no budget: every query runs to its end), so that the
+// simulation is the same at any thread count.
+bool FrameScheduler::parallel(const FrameSettings& settings) const {
+  return m_pool.threads() > 1 && unbudgeted(settings);
+}
+
+// The first pass's mesh-mesh queries of one group, on the pool: each runs whole (there is no
+// budget); then, in pair order on this thread, each is counted and a decided pair's contacts
+// are written, as the serial pass does.
+void FrameScheduler::queryInParallel(bool group, const FrameSettings& settings) {
+  // The schedule, decided before any query runs: what each pair wanted (a query changes it).
+  m_batch.clear();
+  m_requests.clear();
+  for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
+    if (anchored(m_pairs[i]) != group) continue;
+    const std::uint64_t wanted = expectedCost(m_pairs[i].meshMesh().needed(), kFirstGrant);
+    m_batch.push_back(i);
+    m_requests.push_back(QueryRequest::fresh(wanted, std::numeric_limits<double>::infinity()));
+  }
+  auto job = [&](std::size_t k) { traverse(m_pairs[m_batch[k]], m_requests[k], settings); };
+  m_pool.run(m_batch.size(), job);
+  m_stats.parallelMicros += m_pool.lastWallMicros();
+  const auto& busy = m_pool.lastBusyMicros();
+  for (std::size_t t = 0; t < busy.size() && t < m_stats.threadBusyMicros.size(); ++t) {
+    m_stats.threadBusyMicros[t] += busy[t];
+  }
+  for (std::size_t k = 0; k < m_batch.size(); ++k) {
+    DeferredPair& pair = m_pairs[m_batch[k]];
+    account(pair, m_requests[k]);
+    --m_unqueried;
+    if (pair.decided()) {
+      writePair(pair, settings);
+    } else {
+      ++m_undecided;
     }
   }
 }

@@ -13,6 +13,7 @@
 #include "adb/core/query.h"
 #include "deferred_pair.h"
 #include "frame_cost_model.h"
+#include "worker_pool.h"
 
 namespace adb::detail {
 
@@ -76,6 +77,10 @@ class FrameScheduler {
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
   std::uint64_t query(DeferredPair& pair, const QueryRequest& request,
                       const FrameSettings& settings);
+  void traverse(DeferredPair& pair, const QueryRequest& request, const FrameSettings& settings);
+  std::uint64_t account(DeferredPair& pair, const QueryRequest& request);
+  bool parallel(const FrameSettings& settings) const;
+  void queryInParallel(bool group, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
   bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);
@@ -89,6 +94,9 @@ class FrameScheduler {
   std::vector<DeferredPair> m_wholes;  // the others: run whole or not at all
   const btDispatcherInfo* m_info = nullptr;  // the dispatch's, during run()
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
+  std::vector<std::uint32_t> m_batch; // the pairs of a parallel pass: indices into m_pairs
+  std::vector<QueryRequest> m_requests;  // and their requests
+  WorkerPool m_pool;
   FrameStats m_stats;
   Clock::time_point m_start;
   // Measured costs: they turn a time budget into node-pair shares and hold back the

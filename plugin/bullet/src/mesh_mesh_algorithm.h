@@ -43,6 +43,8 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   /// a budget cut) and runs it within `budget`; the evidence stays in this pair's traversal.
   const QueryResult& query(const detail::DeferredPair& pair, const QuerySettings& settings,
                            const StepBudget& budget, bool resume);
+  /// The result of the last call to query() (all its steps).
+  const QueryResult& result() const { return m_traversal.result(); }
   /// The work of the last call to query().
   const StepWork& lastStep() const { return m_traversal.lastStep(); }
   /// Writes the contacts of the last query into the pair's manifold.

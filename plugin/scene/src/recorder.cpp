@@ -17,7 +17,7 @@ constexpr const char* kStepColumns =
     "node_pairs,needed_node_pairs,from_scratch_node_pairs,other_node_pairs,lost,"
     "probed_relative,probed_mean,frame_us,contact_us,pairs,exact_pairs,quality_pairs,"
     "exact_contacts,plausible_contacts,mean_completeness,worst_completeness,out_of_bounds,"
-    "out_of_bounds_relative\n";
+    "out_of_bounds_relative,threads,parallel_us\n";
 
 // The q-quantile of `v` (nearest rank below), 0 when empty.
 double percentile(std::vector<double> v, double q) {
@@ -135,7 +135,8 @@ void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
             << ',' << r.frame.exactPairs << ',' << r.frame.qualityPairs << ','
             << r.frame.exactContacts << ',' << r.frame.plausibleContacts << ','
             << r.frame.meanCompleteness << ',' << r.frame.worstCompleteness << ','
-            << r.outOfBounds << ',' << r.outOfBoundsRelative << '\n';
+            << r.outOfBounds << ',' << r.outOfBoundsRelative << ',' << r.frame.threads << ','
+            << r.frame.parallelMicros << '\n';
   }
   if (m_events.is_open()) {
     for (const OverlapEvent& e : world.events()) {

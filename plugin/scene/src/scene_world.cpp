@@ -68,6 +68,7 @@ FrameSettings frameSettings(const Scene& scene, Backend backend) {
     f.pAccept = w.pAccept;
   }
   f.fronts = w.fronts;
+  f.threads = w.threads;
   f.softenPlausible = scene.effects.softContacts;
   return f;
 }

@@ -73,7 +73,16 @@ struct FrameSettings {
     Never,               ///< every query descends from the roots
   };
   Fronts fronts = Fronts::WithNodePairBudget;
+  /// Threads for the mesh-mesh pairs' queries: 0 all hardware threads, 1 none (the default),
+  /// N at most N (oneTBB's pool). Queries whose schedule does not depend on each other's
+  /// outcome (a step without a budget) run in parallel; their bookkeeping and every contact
+  /// written to Bullet happen on the thread that called stepSimulation, in pair order, so the
+  /// simulation is the same bit for bit at any count. Bullet's own work stays on that thread.
+  int threads = 1;
 };
+
+/// The largest FrameSettings::threads accepted.
+inline constexpr int kMaxThreads = 256;
 
 /// FrameSettings::Fronts' names in scene files and on adb-demo's command line, by value.
 inline constexpr std::array<const char*, 3> kFrontsNames = {"node_pair_budget", "always",
@@ -165,6 +174,15 @@ struct FrameStats {
   /// contacts unseen): the refinement goes to the least complete pair first.
   double meanCompleteness = 1.0;
   double worstCompleteness = 1.0;
+  /// Threads the step's queries could use (FrameSettings::threads resolved), and of
+  /// `micros` the wall clock of the queries run in parallel: micros - parallelMicros is the
+  /// serial part of adb's work.
+  std::uint32_t threads = 1;
+  double parallelMicros = 0.0;
+  /// Per thread (up to kReportedThreads), its time in the parallel queries: at best each is
+  /// parallelMicros.
+  static constexpr int kReportedThreads = 64;
+  std::array<double, kReportedThreads> threadBusyMicros{};
 };
 
 }  // namespace adb

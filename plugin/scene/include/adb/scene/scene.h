@@ -34,6 +34,8 @@ struct WorldSpec {
   double pAccept = 0.9;  ///< unresolved node pairs at or above this become plausible contacts
   /// Whether mesh-mesh pairs keep their fronts across steps (adb::FrameSettings::fronts).
   adb::FrameSettings::Fronts fronts = adb::FrameSettings::Fronts::WithNodePairBudget;
+  /// Threads for adb's pair queries (adb::FrameSettings::threads): 0 all, 1 none.
+  int threads = 1;
   /// Where dynamic bodies belong (a bin's inside, say): a body whose centre is outside it by
   /// more than a quarter of its size (its box's diagonal) is lost. None: no body is lost.
   std::optional<Aabb> bounds;

@@ -1,0 +1,103 @@
+// adb's pair queries on worker threads (FrameSettings::threads): the same simulation to the
+// bit at 1, 2 and all hardware threads, with and without a node-pair budget; the step's
+// statistics say what ran in parallel; bad thread counts are refused by name.
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "adb/support/mesh_generators.h"
+#include "bullet_world.h"
+
+namespace adb {
+namespace {
+
+using test::World;
+
+// Twelve concave bodies (tori and knots) dropped in two layers onto a mesh ground: many
+// mesh-mesh pairs at once, for the pool to share out.
+void addPile(World& w) {
+  w.add(MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4)), 0, btVector3(0, -0.5, 0));
+  const auto torus = MeshData::build(test::flatTorus(0.4, 0.15));
+  const auto knot = MeshData::build(gen::makeModel("knot", 2000));
+  for (int i = 0; i < 12; ++i) {
+    const btVector3 at(btScalar(-0.9 + 0.6 * (i % 4)), btScalar(0.5 + 0.45 * (i / 4)),
+                       btScalar(0.1 * (i % 2)));
+    btRigidBody* b = w.add(i % 2 ? knot : torus, 1, at);
+    b->setActivationState(DISABLE_DEACTIVATION);
+  }
+}
+
+struct PileRun {
+  std::vector<std::uint64_t> hashes;  // the bodies after every step
+  std::uint32_t threads = 0;          // FrameStats::threads of the last step
+  double parallelMicros = 0.0;        // summed over the steps
+  double busyMicros = 0.0;            // every thread's, summed over the steps
+  std::uint64_t nodePairs = 0;
+  std::uint32_t cutPairs = 0;         // summed over the steps
+};
+
+PileRun runPile(FrameSettings f, int threads, int steps = 60) {
+  f.threads = threads;
+  World w(test::Dispatch::Adb, f);
+  addPile(w);
+  PileRun r;
+  for (int step = 0; step < steps; ++step) {
+    w.step();
+    const FrameStats& s = w.adbDispatcher->lastFrameStats();
+    r.threads = s.threads;
+    r.parallelMicros += s.parallelMicros;
+    r.busyMicros += std::accumulate(s.threadBusyMicros.begin(), s.threadBusyMicros.end(), 0.0);
+    r.nodePairs += s.nodePairs;
+    r.cutPairs += s.cutPairs;
+    r.hashes.push_back(test::hashBodies(w.bodies));
+  }
+  return r;
+}
+
+void expectSameTrajectory(const PileRun& a, const PileRun& b) {
+  ASSERT_EQ(a.hashes.size(), b.hashes.size());
+  for (std::size_t step = 0; step < a.hashes.size(); ++step) {
+    ASSERT_EQ(a.hashes[step], b.hashes[step]) << "trajectories part at step " << step + 1;
+  }
+  EXPECT_EQ(a.nodePairs, b.nodePairs);
+}
+
+TEST(Threads, WithoutABudgetTheSimulationIsTheSameAtAnyThreadCount) {
+  const PileRun one = runPile(FrameSettings{}, 1);
+  ASSERT_GT(one.nodePairs, 10000u) << "the pile must collide for this test to mean anything";
+  EXPECT_EQ(one.threads, 1u);
+  EXPECT_EQ(one.parallelMicros, 0.0);
+  const PileRun two = runPile(FrameSettings{}, 2);
+  EXPECT_EQ(two.threads, 2u);
+  EXPECT_GT(two.parallelMicros, 0.0);
+  EXPECT_GT(two.busyMicros, 0.0);
+  expectSameTrajectory(one, two);
+  expectSameTrajectory(one, runPile(FrameSettings{}, 0));  // all hardware threads
+}
+
+TEST(Threads, UnderANodePairBudgetTheSimulationIsTheSameAtOneAndTwoThreads) {
+  FrameSettings f;
+  f.budgetNodePairs = 3000;
+  const PileRun one = runPile(f, 1);
+  EXPECT_GT(one.cutPairs, 0u) << "the budget must bind for this test to mean anything";
+  expectSameTrajectory(one, runPile(f, 2));
+}
+
+TEST(Threads, BadCountsAreRefusedByName) {
+  World w;
+  for (int threads : {-1, kMaxThreads + 1}) {
+    FrameSettings f;
+    f.threads = threads;
+    try {
+      w.adbDispatcher->setFrameSettings(f);
+      ADD_FAILURE() << threads << " threads were accepted";
+    } catch (const SettingsError& e) {
+      EXPECT_NE(std::string(e.what()).find("threads"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace adb
