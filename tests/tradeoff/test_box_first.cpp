@@ -25,6 +25,10 @@ namespace {
 std::atomic<long long> g_allocations{0};
 }  // namespace
 
+// GCC cannot see that this operator new and the operator delete below are a pair over
+// malloc/free, and warns at every inlined delete.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t size) {
   ++g_allocations;
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
@@ -32,6 +36,7 @@ void* operator new(std::size_t size) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace adb::tradeoff {
 namespace {
