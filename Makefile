@@ -4,7 +4,7 @@
 #   make test   build and run the test suite
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all deps build demo test test-asan fuzz bench clean
+.PHONY: all deps build demo test test-asan test-tsan fuzz bench clean
 
 all: build
 
@@ -33,6 +33,13 @@ test-asan: deps
 	cmake --build --preset asan-ubsan -j $(JOBS)
 	ctest --preset asan-ubsan -j $(JOBS)
 
+# The Bullet and scene tests under ThreadSanitizer, every world's pair queries on 2 threads
+# (ADB_TEST_THREADS); not part of make test, for CI's time.
+test-tsan: deps
+	cmake --preset tsan
+	cmake --build --preset tsan -j $(JOBS) --target adb_bullet_tests adb_scene_tests
+	ctest --preset tsan -j $(JOBS)
+
 # libFuzzer on every fuzz target for FUZZ_SECONDS each (tests/fuzz/run_fuzz.sh; clang).
 FUZZ_SECONDS ?= 60
 fuzz:
@@ -45,4 +52,4 @@ bench: build
 	./build/bin/adb-bench-core
 
 clean:
-	rm -rf build build-debug build-asan build-fuzz
+	rm -rf build build-debug build-asan build-tsan build-fuzz

@@ -5,6 +5,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -29,11 +30,22 @@ struct World {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
 
+  // ADB_TEST_THREADS=N (the tsan preset sets 2) runs every world's pair queries on N threads
+  // where a test left FrameSettings::threads at its default: the tests then check, under the
+  // sanitizer, what the threads share.
+  static FrameSettings withTestThreads(FrameSettings frame) {
+    const char* threads = std::getenv("ADB_TEST_THREADS");
+    if (threads != nullptr && frame.threads == FrameSettings{}.threads) {
+      frame.threads = std::atoi(threads);
+    }
+    return frame;
+  }
+
   explicit World(Dispatch dispatch = Dispatch::Adb, const FrameSettings& frame = {}) {
     configuration = std::make_unique<btDefaultCollisionConfiguration>(collisionConstructionInfo());
     if (dispatch == Dispatch::Adb) {
       auto d = std::make_unique<Dispatcher>(configuration.get());
-      d->setFrameSettings(frame);
+      d->setFrameSettings(withTestThreads(frame));
       adbDispatcher = d.get();
       dispatcher = std::move(d);
     } else {

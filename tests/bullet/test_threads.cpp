@@ -41,6 +41,7 @@ struct PileRun {
 PileRun runPile(FrameSettings f, int threads, int steps = 60) {
   f.threads = threads;
   World w(test::Dispatch::Adb, f);
+  w.adbDispatcher->setFrameSettings(f);  // exactly `threads`, whatever ADB_TEST_THREADS says
   addPile(w);
   PileRun r;
   for (int step = 0; step < steps; ++step) {

@@ -50,6 +50,35 @@ TEST(PileScene, EveryFloorAndBackendRunsAndKeepsTheBodiesInTheBin) {
   }
 }
 
+// world.threads runs the pair queries on threads; the simulation is the same to the bit.
+TEST(PileScene, TheSameStepsOnOneAndTwoThreads) {
+  PileSpec spec = smallPile(PileSpec::Floor::Mesh);
+  spec.bodies = 12;
+  std::vector<Vec3> where[2];
+  for (int threads : {1, 2}) {
+    Scene scene = makePileScene(spec);
+    scene.world.threads = threads;
+    SceneWorld world(scene, Backend::Adb);
+    double parallelMicros = 0.0;
+    std::uint64_t pairs = 0;
+    for (int i = 0; i < 60; ++i) {
+      world.step();
+      parallelMicros += world.last().frame.parallelMicros;
+      pairs += world.last().frame.pairs;
+    }
+    EXPECT_GT(pairs, 100u);  // mesh-mesh pairs met: the floor is a mesh
+    EXPECT_EQ(world.last().frame.threads, static_cast<std::uint32_t>(threads));
+    EXPECT_EQ(parallelMicros > 0.0, threads > 1);
+    for (std::size_t b = 0; b < world.bodyCount(); ++b) {
+      where[threads - 1].push_back(world.bodyPose(b).translation);
+    }
+  }
+  ASSERT_EQ(where[0].size(), where[1].size());
+  for (std::size_t b = 0; b < where[0].size(); ++b) {
+    EXPECT_EQ(where[0][b], where[1][b]) << "body " << b;
+  }
+}
+
 TEST(PileScene, ABodyStartsWithItsCentreOfMassWhereThePilePutsIt) {
   const Scene scene = makePileScene(smallPile(PileSpec::Floor::Box));
   SceneWorld world(scene, Backend::Adb);
