@@ -89,6 +89,21 @@ inline TriangleMesh flatTorus(double radius, double tube) {
       Pose{Eigen::AngleAxisd(kQuarterTurn, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero()});
 }
 
+/// `bodies` concave bodies (tori and 2,000-triangle knots in turn), `perRow` to a row 0.6
+/// apart, rows 0.45 above each other from 0.5 up, dropped onto a 10 x 1 x 10 mesh ground:
+/// mesh-mesh pairs at once, overlapping from the start, for budgets and threads to matter.
+inline void addConcavePile(World& w, int bodies, int perRow) {
+  w.add(MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4)), 0, btVector3(0, -0.5, 0));
+  const auto torus = MeshData::build(flatTorus(0.4, 0.15));
+  const auto knot = MeshData::build(gen::makeModel("knot", 2000));
+  for (int i = 0; i < bodies; ++i) {
+    const btVector3 at(btScalar(-0.3 * (perRow - 1) + 0.6 * (i % perRow)),
+                       btScalar(0.5 + 0.45 * (i / perRow)), btScalar(0.1 * (i % 2)));
+    btRigidBody* b = w.add(i % 2 ? knot : torus, 1, at);
+    b->setActivationState(DISABLE_DEACTIVATION);
+  }
+}
+
 /// FNV-1a over the bytes of every body's transform and velocities.
 inline std::uint64_t hashBodies(const std::vector<std::unique_ptr<btRigidBody>>& bodies) {
   std::uint64_t h = 1469598103934665603ull;

@@ -40,17 +40,7 @@ bool finite(const btRigidBody& b) {
 
 // Six concave bodies dropped in two overlapping layers onto a mesh ground: enough mesh-mesh
 // pairs at once for a budget to matter.
-void addPile(World& w) {
-  w.add(meshGround(), 0, btVector3(0, -0.5, 0));
-  const auto torus = MeshData::build(flatTorus(0.4, 0.15));
-  const auto knot = MeshData::build(gen::makeModel("knot", 2000));
-  for (int i = 0; i < 6; ++i) {
-    const btVector3 at(btScalar(-0.6 + 0.6 * (i % 3)), btScalar(0.5 + 0.45 * (i / 3)),
-                       btScalar(0.1 * (i % 2)));
-    btRigidBody* b = w.add(i % 2 ? knot : torus, 1, at);
-    b->setActivationState(DISABLE_DEACTIVATION);
-  }
-}
+void addPile(World& w) { test::addConcavePile(w, 6, 3); }
 
 // --- stacking ---------------------------------------------------------------------------
 

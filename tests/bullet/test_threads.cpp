@@ -15,19 +15,8 @@ namespace {
 
 using test::World;
 
-// Twelve concave bodies (tori and knots) dropped in two layers onto a mesh ground: many
-// mesh-mesh pairs at once, for the pool to share out.
-void addPile(World& w) {
-  w.add(MeshData::build(gen::makeBox(Vec3(5, 0.5, 5), 4)), 0, btVector3(0, -0.5, 0));
-  const auto torus = MeshData::build(test::flatTorus(0.4, 0.15));
-  const auto knot = MeshData::build(gen::makeModel("knot", 2000));
-  for (int i = 0; i < 12; ++i) {
-    const btVector3 at(btScalar(-0.9 + 0.6 * (i % 4)), btScalar(0.5 + 0.45 * (i / 4)),
-                       btScalar(0.1 * (i % 2)));
-    btRigidBody* b = w.add(i % 2 ? knot : torus, 1, at);
-    b->setActivationState(DISABLE_DEACTIVATION);
-  }
-}
+// Twelve concave bodies in three layers: many mesh-mesh pairs at once, for the pool to share.
+void addPile(World& w) { test::addConcavePile(w, 12, 4); }
 
 struct PileRun {
   std::vector<std::uint64_t> hashes;  // the bodies after every step
