@@ -390,6 +390,9 @@ TEST(FrameBudget, TimeBudgetHoldsWithinASmallOvershoot) {
   FrameSettings f;
   f.budgetMicros = 300;
   World w(test::Dispatch::Adb, f);
+  // On the stepping thread alone, whatever ADB_TEST_THREADS says: the preemption test below
+  // reads that thread's CPU time. (A time budget shared across threads is not measured yet.)
+  w.adbDispatcher->setFrameSettings(f);
   addPile(w);
   std::vector<double> used;
   int preempted = 0;
@@ -409,9 +412,9 @@ TEST(FrameBudget, TimeBudgetHoldsWithinASmallOvershoot) {
   EXPECT_LT(preempted, 60) << "the machine was too busy for this test to mean anything";
   ASSERT_GT(used.size(), 30u);
   std::sort(used.begin(), used.end());
-#ifdef __SANITIZE_ADDRESS__
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   // Under the sanitizers every unit of uninterrupted work is several times slower, and so
-  // is the overshoot it causes (measured: median 517 us).
+  // is the overshoot it causes (measured: median 517 us under ASan, 488 to 509 under TSan).
   constexpr double kSlack = 3.0;
 #else
   constexpr double kSlack = 1.0;
