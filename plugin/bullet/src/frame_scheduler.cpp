@@ -289,9 +289,8 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
 }
 
 // Every pair gets what it needed last step and a quarter more (at least kFirstGrant; a cut
-// pair's need is twice what it used), at most a share of what is left (an even share for a
-// pair with the world; the water level of the group for mesh-mesh pairs, queryGroup), so a
-// tight budget still reaches every pair before any is refined. Pairs with a static (or
+// pair's need is twice what it used), at most an even share of what is left, so a tight
+// budget still reaches every pair before any is refined. Pairs with a static (or
 // kinematic) body go first and share the budget among themselves: a missed contact between
 // two moving bodies lets them overlap for a step, a missed one with the world loses a body
 // through the floor. Under a binding budget those whose bodies rest keep their contacts:

@@ -11,9 +11,7 @@
 // moved keeps its contacts without running. One expected to cost more than the whole budget
 // runs regardless (its estimate is only re-measured by running) every third step, or at once
 // when its mesh has moved past the contact breaking threshold. Each mesh-mesh pair is given
-// what it needed last step, at most the water level that shares what is left among the
-// group's mesh-mesh pairs (decided before any runs: the same on any number of threads);
-// then, while budget is
+// what it needed last step, at most an even share of what is left; then, while budget is
 // left, the pair whose contacts are least complete gets as much again, resumed where it
 // stopped. Mesh-box contacts are sampled: each of 16 regions of the tree gives its deepest
 // points (adb/core/box_query.h, forEachDeepestTriangleNear). A mesh-mesh pair is decided
@@ -76,12 +74,10 @@ struct FrameSettings {
   };
   Fronts fronts = Fronts::WithNodePairBudget;
   /// Threads for the mesh-mesh pairs' queries: 0 all hardware threads, 1 none (the default),
-  /// N at most N (oneTBB's pool). The first pass's queries, whose grants are decided before
-  /// any runs, run in parallel; their bookkeeping and every contact written to Bullet happen
-  /// on the thread that called stepSimulation, in pair order, so with a node-pair budget or
-  /// none the simulation is the same bit for bit at any count. A time budget is one deadline
-  /// for all threads. The refinement of a budget's cut pairs, the pairs with the world and
-  /// Bullet's own work stay on the stepping thread.
+  /// N at most N (oneTBB's pool). Queries whose schedule does not depend on each other's
+  /// outcome (a step without a budget) run in parallel; their bookkeeping and every contact
+  /// written to Bullet happen on the thread that called stepSimulation, in pair order, so the
+  /// simulation is the same bit for bit at any count. Bullet's own work stays on that thread.
   int threads = 1;
 };
 
