@@ -60,22 +60,6 @@ double doubtOf(const std::vector<OpenPair>& open) {
   return std::min(1.0, doubt);
 }
 
-// The level that shares `available` among demands `wanted`: each gets min(wanted, level),
-// and those that want more than the level get it all (sum of min(wanted, level) <=
-// available). kUnlimited when every demand fits. `wanted` comes back sorted.
-std::uint64_t waterLevel(std::vector<std::uint64_t>& wanted, std::uint64_t available) {
-  if (available == kUnlimited) return kUnlimited;
-  std::sort(wanted.begin(), wanted.end());
-  std::uint64_t left = available;
-  std::uint64_t sharing = wanted.size();
-  for (const std::uint64_t w : wanted) {
-    if (w > left / sharing) return left / sharing;  // it and all after it get the level
-    left -= w;
-    --sharing;
-  }
-  return kUnlimited;
-}
-
 }  // namespace
 
 MeshMeshAlgorithm& DeferredPair::meshMesh() const {
@@ -313,7 +297,8 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
       // Under a budget too small for every pair, a pair with the world whose mesh has
       // barely moved since it last ran keeps its contacts (refreshed for the new poses):
       // they are as good as new, and its cost goes to the pairs that changed.
-      if (keepsContacts(pair)) {
+      if (group && m_binding &&
+          pair.motion < kRestingMotion * pair.algorithm->breakingThreshold()) {
         --waiting;
         continue;
       }
@@ -328,59 +313,53 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
                settings);
       --waiting;
     }
-    queryGroup(group, settings);
+    if (parallel(settings)) {
+      queryInParallel(group, settings);
+      continue;
+    }
+    for (DeferredPair& pair : m_pairs) {
+      if (anchored(pair) != group) continue;
+      // What it needed last step and a quarter more (a pair's need grows while bodies
+      // settle into each other), at least a few levels of both trees.
+      const std::uint64_t last = pair.meshMesh().needed();
+      const std::uint64_t wanted = expectedCost(last, kFirstGrant);
+      const std::uint64_t grant = std::min(wanted, share(settings, waiting));
+      // The time cap is what is left of the step: the share is in the grant.
+      query(pair, QueryRequest::fresh(grant, microsLeft(settings), grant < wanted), settings);
+      --m_unqueried;
+      // A decided pair's contacts are final: written now, their time is measured rather
+      // than estimated by the time the budget runs out.
+      if (pair.decided()) {
+        writePair(pair, settings);
+      } else {
+        ++m_undecided;
+      }
+      --waiting;
+    }
   }
 }
 
-// The first pass's mesh-mesh pairs of one group. Each gets what it needed last step and a
-// quarter more (a pair's need grows while bodies settle into each other), at least a few
-// levels of both trees, at most the water level of what is left: every pair that wants more
-// than the others' leftovers gets the same share. The grants are decided before any query
-// runs, so they depend neither on the order the queries run in nor on how many run at once:
-// with a node-pair budget the step is the same at any thread count. On the pool the queries
-// run together, then are counted and their contacts written in pair order; on one thread
-// each is written as soon as it is decided, its time then measured rather than estimated by
-// the time the budget runs out.
-void FrameScheduler::queryGroup(bool group, const FrameSettings& settings) {
+// Whether this step's mesh-mesh queries run on the pool: only where their schedule does not
+// depend on each other's outcome (no budget: every query runs to its end), so that the
+// simulation is the same at any thread count.
+bool FrameScheduler::parallel(const FrameSettings& settings) const {
+  return m_pool.threads() > 1 && unbudgeted(settings);
+}
+
+// The first pass's mesh-mesh queries of one group, on the pool: each runs whole (there is no
+// budget); then, in pair order on this thread, each is counted and a decided pair's contacts
+// are written, as the serial pass does.
+void FrameScheduler::queryInParallel(bool group, const FrameSettings& settings) {
+  // The schedule, decided before any query runs: what each pair wanted (a query changes it).
   m_batch.clear();
   m_requests.clear();
-  m_wanted.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (anchored(m_pairs[i]) != group) continue;
-    m_batch.push_back(i);
-    m_wanted.push_back(expectedCost(m_pairs[i].meshMesh().needed(), kFirstGrant));
-  }
-  if (m_batch.empty()) return;
-  // (waterLevel sorts m_wanted: the requests read each pair's demand again.)
-  const std::uint64_t level = waterLevel(m_wanted, share(settings, 1));
-  for (std::uint32_t i : m_batch) {
     const std::uint64_t wanted = expectedCost(m_pairs[i].meshMesh().needed(), kFirstGrant);
-    const std::uint64_t grant = std::min(wanted, level);
-    m_requests.push_back(QueryRequest::fresh(grant, 0.0, grant < wanted));
+    m_batch.push_back(i);
+    m_requests.push_back(QueryRequest::fresh(wanted, std::numeric_limits<double>::infinity()));
   }
-  if (m_pool.threads() > 1 && m_batch.size() > 1) {
-    queryOnPool(settings);
-    return;
-  }
-  for (std::size_t k = 0; k < m_batch.size(); ++k) {
-    DeferredPair& pair = m_pairs[m_batch[k]];
-    QueryRequest& request = m_requests[k];
-    request.micros = microsLeft(settings);  // what is left of the step: the share is in the grant
-    query(pair, request, settings);
-    settle(pair, settings);
-  }
-}
-
-// The group's queries on the pool. A time budget is one deadline for all: each query's cap is
-// what is left of it when the query starts, so the step's wall time (not the sum of the
-// threads') is what the budget bounds.
-void FrameScheduler::queryOnPool(const FrameSettings& settings) {
-  const double deadline = elapsedMicros() + microsLeft(settings);
-  auto job = [&](std::size_t k) {
-    QueryRequest request = m_requests[k];
-    request.micros = std::max(0.0, deadline - elapsedMicros());
-    traverse(m_pairs[m_batch[k]], request, settings);
-  };
+  auto job = [&](std::size_t k) { traverse(m_pairs[m_batch[k]], m_requests[k], settings); };
   m_pool.run(m_batch.size(), job);
   m_stats.parallelMicros += m_pool.lastWallMicros();
   const auto& busy = m_pool.lastBusyMicros();
@@ -390,23 +369,13 @@ void FrameScheduler::queryOnPool(const FrameSettings& settings) {
   for (std::size_t k = 0; k < m_batch.size(); ++k) {
     DeferredPair& pair = m_pairs[m_batch[k]];
     account(pair, m_requests[k]);
-    settle(pair, settings);
+    --m_unqueried;
+    if (pair.decided()) {
+      writePair(pair, settings);
+    } else {
+      ++m_undecided;
+    }
   }
-}
-
-// A queried pair of the first pass: a decided pair's contacts are final and written now; the
-// others wait for the refinement.
-void FrameScheduler::settle(DeferredPair& pair, const FrameSettings& settings) {
-  --m_unqueried;
-  if (pair.decided()) {
-    writePair(pair, settings);
-  } else {
-    ++m_undecided;
-  }
-}
-
-double FrameScheduler::elapsedMicros() const {
-  return std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
 }
 
 bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, double microsShare,
@@ -461,7 +430,7 @@ void FrameScheduler::keepSkipped() {
 void FrameScheduler::refine(const FrameSettings& settings) {
   // Whole pairs that did not fit their share or rest: in turn, while what is left covers
   // them; again once the mesh-mesh pairs are refined.
-  runWholesLeft(settings, false);
+  runWholesLeft(settings);
   m_order.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (!m_pairs[i].decided()) m_order.push_back(i);
@@ -504,25 +473,16 @@ void FrameScheduler::refine(const FrameSettings& settings) {
       std::push_heap(m_order.begin(), m_order.end(), moreCertain);
     }
   }
-  runWholesLeft(settings, true);
+  runWholesLeft(settings);
 }
 
 // Runs the whole pairs not run yet, in their order, while what is left covers them.
-// Before the mesh-mesh refinement (`restingToo` false) a pair with the world that rests keeps
-// its contacts, as in the first pass: what the first pass's grants left goes to the cut
-// mesh-mesh pairs first.
-void FrameScheduler::runWholesLeft(const FrameSettings& settings, bool restingToo) {
+void FrameScheduler::runWholesLeft(const FrameSettings& settings) {
   for (DeferredPair& pair : m_wholes) {
-    if (pair.written || (!restingToo && keepsContacts(pair))) continue;
-    runWhole(pair, nodePairsLeft(settings), microsLeft(settings, !anchored(pair)), settings);
+    if (!pair.written) {
+      runWhole(pair, nodePairsLeft(settings), microsLeft(settings, !anchored(pair)), settings);
+    }
   }
-}
-
-// A pair with the world whose mesh has barely moved since it last ran, under a budget too
-// small for every pair: its kept contacts are as good as new.
-bool FrameScheduler::keepsContacts(const DeferredPair& pair) const {
-  return anchored(pair) && m_binding &&
-         pair.motion < kRestingMotion * pair.algorithm->breakingThreshold();
 }
 
 // Whether a time budget has no room left for one more cut pair's contacts.

@@ -71,8 +71,7 @@ class FrameScheduler {
   /// otherwise.
   bool runWhole(DeferredPair& pair, std::uint64_t share, double microsShare,
                 const FrameSettings& settings);
-  void runWholesLeft(const FrameSettings& settings, bool restingToo);
-  bool keepsContacts(const DeferredPair& pair) const;
+  void runWholesLeft(const FrameSettings& settings);
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
   /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
@@ -80,10 +79,8 @@ class FrameScheduler {
                       const FrameSettings& settings);
   void traverse(DeferredPair& pair, const QueryRequest& request, const FrameSettings& settings);
   std::uint64_t account(DeferredPair& pair, const QueryRequest& request);
-  void queryGroup(bool group, const FrameSettings& settings);
-  void queryOnPool(const FrameSettings& settings);
-  void settle(DeferredPair& pair, const FrameSettings& settings);
-  double elapsedMicros() const;
+  bool parallel(const FrameSettings& settings) const;
+  void queryInParallel(bool group, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
   bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);
@@ -99,7 +96,6 @@ class FrameScheduler {
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   std::vector<std::uint32_t> m_batch; // the pairs of a parallel pass: indices into m_pairs
   std::vector<QueryRequest> m_requests;  // and their requests
-  std::vector<std::uint64_t> m_wanted;   // and what they wanted (sorted to share it out)
   WorkerPool m_pool;
   FrameStats m_stats;
   Clock::time_point m_start;
