@@ -319,21 +319,11 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
     }
     for (DeferredPair& pair : m_pairs) {
       if (anchored(pair) != group) continue;
-      // What it needed last step and a quarter more (a pair's need grows while bodies
-      // settle into each other), at least a few levels of both trees.
-      const std::uint64_t last = pair.meshMesh().needed();
-      const std::uint64_t wanted = expectedCost(last, kFirstGrant);
+      const std::uint64_t wanted = firstWanted(pair);
       const std::uint64_t grant = std::min(wanted, share(settings, waiting));
       // The time cap is what is left of the step: the share is in the grant.
       query(pair, QueryRequest::fresh(grant, microsLeft(settings), grant < wanted), settings);
-      --m_unqueried;
-      // A decided pair's contacts are final: written now, their time is measured rather
-      // than estimated by the time the budget runs out.
-      if (pair.decided()) {
-        writePair(pair, settings);
-      } else {
-        ++m_undecided;
-      }
+      settle(pair, settings);
       --waiting;
     }
   }
@@ -355,9 +345,9 @@ void FrameScheduler::queryInParallel(bool group, const FrameSettings& settings) 
   m_requests.clear();
   for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
     if (anchored(m_pairs[i]) != group) continue;
-    const std::uint64_t wanted = expectedCost(m_pairs[i].meshMesh().needed(), kFirstGrant);
     m_batch.push_back(i);
-    m_requests.push_back(QueryRequest::fresh(wanted, std::numeric_limits<double>::infinity()));
+    m_requests.push_back(
+        QueryRequest::fresh(firstWanted(m_pairs[i]), std::numeric_limits<double>::infinity()));
   }
   auto job = [&](std::size_t k) { traverse(m_pairs[m_batch[k]], m_requests[k], settings); };
   m_pool.run(m_batch.size(), job);
@@ -369,12 +359,26 @@ void FrameScheduler::queryInParallel(bool group, const FrameSettings& settings) 
   for (std::size_t k = 0; k < m_batch.size(); ++k) {
     DeferredPair& pair = m_pairs[m_batch[k]];
     account(pair, m_requests[k]);
-    --m_unqueried;
-    if (pair.decided()) {
-      writePair(pair, settings);
-    } else {
-      ++m_undecided;
-    }
+    settle(pair, settings);
+  }
+}
+
+// What a mesh-mesh pair wants in the first pass: what it needed last step and a quarter more
+// (a pair's need grows while bodies settle into each other), at least a few levels of both
+// trees.
+std::uint64_t FrameScheduler::firstWanted(const DeferredPair& pair) {
+  return expectedCost(pair.meshMesh().needed(), kFirstGrant);
+}
+
+// A pair the first pass queried: a decided pair's contacts are final and written now (their
+// time measured rather than estimated by the time the budget runs out); the others wait for
+// the refinement.
+void FrameScheduler::settle(DeferredPair& pair, const FrameSettings& settings) {
+  --m_unqueried;
+  if (pair.decided()) {
+    writePair(pair, settings);
+  } else {
+    ++m_undecided;
   }
 }
 

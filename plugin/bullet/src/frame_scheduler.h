@@ -81,6 +81,8 @@ class FrameScheduler {
   std::uint64_t account(DeferredPair& pair, const QueryRequest& request);
   bool parallel(const FrameSettings& settings) const;
   void queryInParallel(bool group, const FrameSettings& settings);
+  static std::uint64_t firstWanted(const DeferredPair& pair);
+  void settle(DeferredPair& pair, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
   bool outOfTime(const FrameSettings& settings) const;
   void writeContacts(const FrameSettings& settings);

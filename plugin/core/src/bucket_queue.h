@@ -1,7 +1,8 @@
 // Internal: the ADB traversal's priority queue — buckets by key, LIFO inside a bucket.
 //
-// A binary heap of 32-byte entries cost about 100 instructions a pair (sifting up on push and
-// down on pop). The keys are quantised anyway (priority_table.h), so a bucket per key value
+// A binary heap of 32-byte entries cost 103 instructions a node pair (sifting up on push and
+// down on pop; callgrind on nodePairCost/adb before issue 26, docs/probability-model.md
+// section 6). The keys are quantised anyway (priority_table.h), so a bucket per key value
 // does: a push appends to its bucket and sets the bucket's bit in an occupancy mask, a pop
 // takes the last entry of the highest occupied bucket (found with one count of leading
 // zeros). Inside a bucket the newest pair comes first: the children of the pair just expanded,

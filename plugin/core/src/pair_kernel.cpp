@@ -59,10 +59,4 @@ void PairKernel::boxDepths(double depth[4]) const {
   }
 }
 
-void PairKernel::cellCounts(unsigned mask, CellCounts counts[4]) const {
-  const CellsOfB b = cellsOfB();
-  if (mask & 3u) countRow<0>(b, mask, counts);
-  if (mask & 12u) countRow<1>(b, mask, counts);
-}
-
 }  // namespace adb::detail

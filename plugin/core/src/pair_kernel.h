@@ -8,9 +8,9 @@
 // expression in the same order, so every answer is the one the pair-at-a-time test gave, bit
 // for bit (the reference in internal_tests/reference_child_pairs.h checks it).
 //
-// The tests, in the order that rejects most pairs soonest (measured in docs/core-results.md):
-// the two boxes on A's face axes, on B's face axes, then each node's slab (NodeDistribution)
-// against the other's box. A curved sheet's nodes are thin along their mean normal, so the
+// The tests, cheapest first: the two boxes on A's face axes (B's boxes are posed in A's frame
+// for every pair anyway), on B's face axes, then each node's slab (NodeDistribution) against
+// the other's box. A curved sheet's nodes are thin along their mean normal, so the
 // slab rejects near misses the boxes cannot. The 9 edge-edge axes would prune a few more
 // pairs at twice the cost. Touching counts as overlapping, within the frame's slack: a pair
 // whose triangles could meet is never pruned.
@@ -95,15 +95,15 @@ class PairKernel {
   void boxDepths(double depth[4]) const;
   /// The cell model's counts of each pair in `mask` (a subset of overlapMask()'s answer),
   /// from the intersection of the two boxes in both frames (pair_probability.cpp says how).
-  void cellCounts(unsigned mask, CellCounts counts[4]) const;
-  /// overlapMask() and cellCounts() of its answer in one pass: each row is counted while its
-  /// posed boxes are at hand (ADB mode's expansion).
-  unsigned overlapMaskAndCounts(CellCounts counts[4]) {
-    const unsigned mask = overlapMask();
-    if (mask == 0) return 0;
-    const CellsOfB b = cellsOfB();
+  void cellCounts(unsigned mask, CellCounts counts[4]) const {
+    const CellsOfB b = cellsOfB();  // B's side, shared by both rows
     if (mask & 3u) countRow<0>(b, mask, counts);
     if (mask & 12u) countRow<1>(b, mask, counts);
+  }
+  /// overlapMask(), and cellCounts() of what it reports (ADB mode's expansion).
+  unsigned overlapMaskAndCounts(CellCounts counts[4]) {
+    const unsigned mask = overlapMask();
+    if (mask != 0) cellCounts(mask, counts);
     return mask;
   }
 

@@ -183,12 +183,11 @@ struct Traversal::Impl {
   // What an expansion at depth sum d needs besides its pairs, worked out on first use in a
   // query (a division and up to ten multiplications, shared by every expansion at d).
   struct DepthTerms {
-    double lb = 0.0;  // Eq. 3's depth term
-    int column = 0;   // its column of the priority table
-    int passing = 0;  // smallestPassingCells(lb, pMin)
+    double lb = 0.0;   // Eq. 3's depth term
+    int column = 0;    // its column of the priority table
+    int passing = -1;  // smallestPassingCells(lb, pMin); -1: not worked out yet
   };
   std::vector<DepthTerms> depthTerms;
-  std::vector<bool> depthKnown;
   const detail::PriorityTable* priorities = &detail::priorityTable();
   std::vector<Witness> witnesses;
   std::vector<std::uint32_t> regionHits;  // hits found per contact region
@@ -272,8 +271,7 @@ struct Traversal::Impl {
                ta.maxDepth() <= kMaxQueueDepth && tb.maxDepth() <= kMaxQueueDepth;
     if (tableKey) {
       const std::size_t sums = static_cast<std::size_t>(ta.maxDepth() + tb.maxDepth()) + 1;
-      depthTerms.resize(sums);
-      depthKnown.assign(sums, false);
+      depthTerms.assign(sums, DepthTerms{});
     }
     witnesses.clear();
     regionHits.clear();
@@ -509,15 +507,38 @@ struct Traversal::Impl {
     int depthA, depthB;
   };
 
-  Expansion expand(const Entry& e) const {
-    const Node& na = a.tree->nodes()[e.a];
-    const Node& nb = b.tree->nodes()[e.b];
+  // The expansion of pair (ia, ib) at depths (depthA, depthB): every mode's and key's.
+  Expansion expand(std::uint32_t ia, int depthA, std::uint32_t ib, int depthB) const {
+    return expand(a.tree->nodes()[ia], ia, depthA, b.tree->nodes()[ib], ib, depthB);
+  }
+  // The same for nodes the caller has already read (exact mode: 2 % of its instructions).
+  static Expansion expand(const Node& na, std::uint32_t ia, int depthA, const Node& nb,
+                          std::uint32_t ib, int depthB) {
     Expansion x;
-    x.countA = children(na, e.a, x.ca);
-    x.countB = children(nb, e.b, x.cb);
-    x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
-    x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+    x.countA = children(na, ia, x.ca);
+    x.countB = children(nb, ib, x.cb);
+    x.depthA = na.isLeaf() ? depthA : depthA + 1;
+    x.depthB = nb.isLeaf() ? depthB : depthB + 1;
     return x;
+  }
+
+  // Up to four items in ascending key order (ties keep their arrival order): the few child
+  // pairs of one expansion.
+  template <class Item, class Key>
+  static void insertAscending(Item* items, Key* keys, int& n, const Item& item, Key key) {
+    int k = n++;
+    for (; k > 0 && keys[k - 1] > key; --k) {
+      items[k] = items[k - 1];
+      keys[k] = keys[k - 1];
+    }
+    items[k] = item;
+    keys[k] = key;
+  }
+
+  // A pair dropped for p = 0 (QuerySettings::pruneImprobable): its E[X] stays evidence.
+  void notePruned(double expected) {
+    prunedMass += std::min(1.0, expected);
+    prunedExpected += expected;
   }
 
   detail::PairKernel pairsOf(const Expansion& x) const {
@@ -571,7 +592,7 @@ struct Traversal::Impl {
         }
         continue;
       }
-      pushOverlappingChildren(e, na, nb);
+      pushOverlappingChildren(e, expand(na, e.a, e.depthA, nb, e.b, e.depthB));
     }
     heap.clear();
     finish(exactHit, 1.0, StopReason::Completed);
@@ -584,12 +605,7 @@ struct Traversal::Impl {
 
   // Exact mode's expansion: the overlapping children go on the stack, the first to pop last.
   // In the trees' order they are pushed as the kernel reports them; deepest first, sorted.
-  void pushOverlappingChildren(const StackEntry& e, const Node& na, const Node& nb) {
-    Expansion x;
-    x.countA = children(na, e.a, x.ca);
-    x.countB = children(nb, e.b, x.cb);
-    x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
-    x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+  void pushOverlappingChildren(const StackEntry& e, const Expansion& x) {
     if (settings.descent == ExactDescent::MostCellsFirst) {
       pushMostCellsLast(e, x);
       return;
@@ -607,7 +623,9 @@ struct Traversal::Impl {
     if (mask == 0) return;
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
-        if ((mask >> detail::PairKernel::index(i, j)) & 1u) pushChild(x.ca[i], x.cb[j], e.region, x);
+        if ((mask >> detail::PairKernel::index(i, j)) & 1u) {
+          pushChild(x.ca[i], x.cb[j], e.region, x);
+        }
       }
     }
   }
@@ -627,14 +645,7 @@ struct Traversal::Impl {
     for (int i = 0; i < x.countA; ++i) {
       for (int j = 0; j < x.countB; ++j) {
         const int p = detail::PairKernel::index(i, j);
-        if (((mask >> p) & 1u) == 0) continue;
-        int k = n++;
-        for (; k > 0 && key[k - 1] > counts[p].expected; --k) {
-          order[k] = order[k - 1];
-          key[k] = key[k - 1];
-        }
-        order[k] = p;
-        key[k] = counts[p].expected;
+        if ((mask >> p) & 1u) insertAscending(order, key, n, p, counts[p].expected);
       }
     }
     for (int k = 0; k < n; ++k) {
@@ -713,13 +724,7 @@ struct Traversal::Impl {
         const ChildTest& t = out[count - 1 - (i * x.countB + j)];
         const float d =
             t.overlaps ? static_cast<float>(depth[detail::PairKernel::index(i, j)]) : -1.0f;
-        int k = n++;
-        for (; k > 0 && key[k - 1] > d; --k) {
-          sorted[k] = sorted[k - 1];
-          key[k] = key[k - 1];
-        }
-        sorted[k] = t;
-        key[k] = d;
+        insertAscending(sorted, key, n, t, d);
       }
     }
     for (int k = 0; k < count; ++k) out[k] = sorted[count - 1 - k];
@@ -866,8 +871,7 @@ struct Traversal::Impl {
   // runExact's expansion of a pair with nothing recorded below it: every child pair tested
   // and certified, processed in the order runExact pops them.
   void expandFresh(const detail::FrontEntry& c, WalkFrame& out) {
-    const Expansion x = expand(Entry{kUnestimated, 1.0f, c.a, c.b, kNoRegion, c.depthA, c.depthB,
-                                     0.0f});
+    const Expansion x = expand(c.a, c.depthA, c.b, c.depthB);
     ChildTest kids[4];
     const int count = orderedChildren(x, true, kids);
     out.kidCount = static_cast<std::uint8_t>(count);
@@ -1083,11 +1087,7 @@ struct Traversal::Impl {
     const Node& na = a.tree->nodes()[e.a];
     const Node& nb = b.tree->nodes()[e.b];
     if (na.isLeaf() && nb.isLeaf()) return testLeafPair(e.a, e.b, e.region);
-    Expansion x;
-    x.countA = children(na, e.a, x.ca);
-    x.countB = children(nb, e.b, x.cb);
-    x.depthA = na.isLeaf() ? e.depthA : e.depthA + 1;
-    x.depthB = nb.isLeaf() ? e.depthB : e.depthB + 1;
+    const Expansion x = expand(e.a, e.depthA, e.b, e.depthB);
     detail::PairKernel pairs = pairsOf(x);
     detail::CellCounts counts[4];
     const unsigned mask = pairs.overlapMaskAndCounts(counts);
@@ -1103,8 +1103,7 @@ struct Traversal::Impl {
         const detail::CellCounts& c = counts[p];
         const bool possible = c.sA > 0 && c.sB > 0 && lb > 0.0;
         if (!possible && settings.pruneImprobable) {  // paper: only p > 0
-          prunedMass += std::min(1.0, c.expected);
-          prunedExpected += c.expected;
+          notePruned(c.expected);
           continue;
         }
         const bool leaves =
@@ -1127,8 +1126,7 @@ struct Traversal::Impl {
   const DepthTerms& depthTermsOf(int depthA, int depthB) {
     const std::size_t sum = static_cast<std::size_t>(depthA + depthB);
     DepthTerms& t = depthTerms[sum];
-    if (!depthKnown[sum]) {
-      depthKnown[sum] = true;
+    if (t.passing < 0) {
       t.lb = cellIntersectionBound(depthA, depthB, a.maxDepth, b.maxDepth);
       t.column = detail::priorityColumn(t.lb);
       t.passing = smallestPassingCells(t.lb, settings.pMin);
@@ -1197,7 +1195,7 @@ struct Traversal::Impl {
   // Expands one popped pair. Returns true when the query is decided.
   bool expandAdb(const Entry& e) {
     if (bothLeaves(e)) return testLeafPair(e.a, e.b, e.region);
-    const Expansion x = expand(e);
+    const Expansion x = expand(e.a, e.depthA, e.b, e.depthB);
     detail::PairKernel pairs = pairsOf(x);
     const unsigned mask = pairs.overlapMask();
     detail::CellCounts counts[4];
@@ -1210,8 +1208,7 @@ struct Traversal::Impl {
         const detail::PairEstimate est = detail::estimateOverlapping(
             counts[p], x.depthA, x.depthB, a.maxDepth, b.maxDepth);
         if (!(est.lower > 0.0) && settings.pruneImprobable) {  // paper: only p > 0
-          prunedMass += std::min(1.0, est.expected);
-          prunedExpected += est.expected;
+          notePruned(est.expected);
           continue;
         }
         const bool leaves =

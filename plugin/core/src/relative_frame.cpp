@@ -33,17 +33,15 @@ RelativeFrame RelativeFrame::between(const AdbTree& a, const Pose& poseA, const 
   f.tBA = worldToA * (tb - ta);
   f.rAB = f.rBA.inverse();
   f.tAB = -(f.rAB * f.tBA);
-  f.absBA = f.rBA.cwiseAbs();
-  f.absAB = f.rAB.cwiseAbs();
   const auto radius = [](const Node& n) {
     return std::max(n.boxLo().cwiseAbs().maxCoeff(), n.boxHi().cwiseAbs().maxCoeff());
   };
   f.slack = kOverlapRelativeSlack * (f.tBA.norm() + radius(a.root()) + radius(b.root()));
   broadcast(f.rBA, f.lanes.rBA);
-  broadcast(f.absBA, f.lanes.absBA);
+  broadcast(f.rBA.cwiseAbs(), f.lanes.absBA);
   broadcast(f.tBA, f.lanes.tBA);
   broadcast(f.rAB, f.lanes.rAB);
-  broadcast(f.absAB, f.lanes.absAB);
+  broadcast(f.rAB.cwiseAbs(), f.lanes.absAB);
   broadcast(f.tAB, f.lanes.tAB);
   return f;
 }

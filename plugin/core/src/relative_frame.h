@@ -25,10 +25,10 @@ struct LaneFrame {
 /// The relative placement of tree B in tree A's local frame, and the reverse, fixed for one
 /// query. x_A = rBA * x_B + tBA.
 struct RelativeFrame {
-  Mat3 rBA, absBA;  // rotation B -> A and its element-wise absolute value
+  Mat3 rBA;  // rotation B -> A (its element-wise absolute value is in `lanes` only)
   Vec3 tBA;
-  Mat3 rAB, absAB;  // A -> B: the true inverse of rBA (poses are orthonormal only to 1e-6,
-  Vec3 tAB;         // so the transpose could misplace a box by more than the slack)
+  Mat3 rAB;  // A -> B: the true inverse of rBA (poses are orthonormal only to 1e-6,
+  Vec3 tAB;  // so the transpose could misplace a box by more than the slack)
   double slack = 0.0;  // absolute overlap tolerance: rounding of the transform, never less
   LaneFrame lanes;     // the above, broadcast
 

@@ -69,7 +69,11 @@ detail::CellCounts countsOverlapping(const PosedNode& a, const PosedNode& b) {
 
 ChildPairs::ChildPairs(const AdbTree& a, const std::uint32_t* ca, int countA, const AdbTree& b,
                        const std::uint32_t* cb, int countB, const detail::RelativeFrame& frame)
-    : m_frame(frame), m_rBAt(frame.rBA.transpose()), m_rABt(frame.rAB.transpose()) {
+    : m_frame(frame),
+      m_rBAt(frame.rBA.transpose()),
+      m_rABt(frame.rAB.transpose()),
+      m_absBA(frame.rBA.cwiseAbs()),
+      m_absAB(frame.rAB.cwiseAbs()) {
   for (int i = 0; i < countA; ++i) {
     const Node& n = a.nodes()[ca[i]];
     m_a[i].c = 0.5 * (n.boxHi() + n.boxLo());
@@ -83,7 +87,7 @@ ChildPairs::ChildPairs(const AdbTree& a, const std::uint32_t* ca, int countA, co
     p.h = 0.5 * (n.boxHi() - n.boxLo());
     p.d = &b.distributions()[cb[j]];
     p.cOther = mul(frame.rBA, p.c) + frame.tBA;
-    p.hOther = mul(frame.absBA, p.h);
+    p.hOther = mul(m_absBA, p.h);
   }
 }
 
@@ -91,7 +95,7 @@ void ChildPairs::mapA(int i) {
   if (m_mappedA[i]) return;
   m_mappedA[i] = true;
   m_a[i].cOther = mul(m_frame.rAB, m_a[i].c) + m_frame.tAB;
-  m_a[i].hOther = mul(m_frame.absAB, m_a[i].h);
+  m_a[i].hOther = mul(m_absAB, m_a[i].h);
 }
 
 void ChildPairs::reachA(int i) {

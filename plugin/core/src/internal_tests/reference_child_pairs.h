@@ -68,7 +68,7 @@ class ChildPairs {
   void reachA(int i);
   void reachB(int j);
   const detail::RelativeFrame& m_frame;
-  Mat3 m_rBAt, m_rABt;
+  Mat3 m_rBAt, m_rABt, m_absBA, m_absAB;  // the frame's, as the old RelativeFrame held them
   PosedNode m_a[2], m_b[2];
   bool m_mappedA[2] = {false, false};
   bool m_reachA[2] = {false, false}, m_reachB[2] = {false, false};

@@ -41,7 +41,8 @@ CollisionEstimate estimateCollision(int s, int sA, int sB, double lb);
 /// min(sA, sB, 10) with 1 - (1 - lb)^x > threshold (computed as Eq. 3 computes it) and
 /// Pr[X >= x] > threshold at the smallest such x; the tail is bounded by Markov (mu / x) and
 /// Cantelli (sigma^2 / (sigma^2 + (x - mu)^2)) with a margin far above Eq. 3's rounding.
-/// About 20 operations, against Eq. 3's hundred or more.
+/// On the knot's nodePairCost/adb benchmark (callgrind with -g) the tail's part costs 68
+/// instructions a call, Eq. 3 335 (docs/probability-model.md section 6 has the command).
 bool collisionLowerBoundCouldExceed(int s, int sA, int sB, double lb, double threshold);
 
 /// The pre-test in two parts, for a caller that tests many pairs at one depth term: the
