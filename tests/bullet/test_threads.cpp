@@ -67,12 +67,28 @@ TEST(Threads, WithoutABudgetTheSimulationIsTheSameAtAnyThreadCount) {
   expectSameTrajectory(one, runPile(FrameSettings{}, 0));  // all hardware threads
 }
 
-TEST(Threads, UnderANodePairBudgetTheSimulationIsTheSameAtOneAndTwoThreads) {
+// A budgeted step's queries run in rounds whose grants are decided before they run: on the
+// pool, and the same grants, contacts and trajectories at any thread count.
+TEST(Threads, UnderANodePairBudgetTheSimulationIsTheSameAtAnyThreadCount) {
   FrameSettings f;
   f.budgetNodePairs = 3000;
   const PileRun one = runPile(f, 1);
   EXPECT_GT(one.cutPairs, 0u) << "the budget must bind for this test to mean anything";
-  expectSameTrajectory(one, runPile(f, 2));
+  EXPECT_EQ(one.parallelMicros, 0.0);
+  const PileRun two = runPile(f, 2);
+  EXPECT_GT(two.parallelMicros, 0.0) << "budgeted queries ran on the stepping thread alone";
+  expectSameTrajectory(one, two);
+  expectSameTrajectory(one, runPile(f, 0));
+}
+
+// The paper's best-first traversal with a quality target, refined by re-running: the same.
+TEST(Threads, UnderABudgetWithAQualityTargetTheSimulationIsTheSameAtOneAndTwoThreads) {
+  FrameSettings f;
+  f.budgetNodePairs = 3000;
+  f.kMin = 4;
+  const PileRun one = runPile(f, 1, 40);
+  EXPECT_GT(one.cutPairs, 0u) << "the budget must bind for this test to mean anything";
+  expectSameTrajectory(one, runPile(f, 2, 40));
 }
 
 TEST(Threads, BadCountsAreRefusedByName) {

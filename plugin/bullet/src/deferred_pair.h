@@ -38,6 +38,7 @@ struct DeferredPair {
   double completeness = 0.0;   // see FrameStats::meanCompleteness: the refinement's order
   StopReason stop = StopReason::Completed;
   bool written = false;        // its contacts are in its manifold
+  bool resting = false;        // a whole pair left out of the first pass: its mesh barely moved
 
   /// Completed, stopped on quality or with its contacts found: nothing left to refine.
   bool decided() const { return !isBudgetStop(stop); }

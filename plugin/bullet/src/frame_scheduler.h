@@ -71,33 +71,47 @@ class FrameScheduler {
   /// otherwise.
   bool runWhole(DeferredPair& pair, std::uint64_t share, double microsShare,
                 const FrameSettings& settings);
-  void runWholesLeft(const FrameSettings& settings);
+  /// The whole pairs not run yet, in their order, while what is left covers them; with
+  /// `resting`, also those that kept their contacts because their mesh barely moved.
+  void runWholesLeft(const FrameSettings& settings, bool resting);
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
-  /// Runs one query of `pair`; returns the work it did (node pairs and triangle tests).
-  std::uint64_t query(DeferredPair& pair, const QueryRequest& request,
-                      const FrameSettings& settings);
   void traverse(DeferredPair& pair, const QueryRequest& request, const FrameSettings& settings);
   std::uint64_t account(DeferredPair& pair, const QueryRequest& request);
-  bool parallel(const FrameSettings& settings) const;
-  void queryInParallel(bool group, const FrameSettings& settings);
+  /// The first pass's mesh-mesh queries of one group (anchored or not), `waiting` pairs of
+  /// the group not run yet, in rounds.
+  void firstQueries(bool group, std::uint64_t waiting, const FrameSettings& settings);
+  /// Starts a round: an empty batch, whose queries stop by what is left of the step now.
+  void beginRound(const FrameSettings& settings);
+  /// Runs the traversals of the round's batch (m_batch, m_requests) on the pool; the caller
+  /// then counts them in batch order on this thread.
+  void runRound(const FrameSettings& settings);
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
   bool outOfTime(const FrameSettings& settings) const;
+  /// Microseconds since the step's pair work began (safe from any thread).
+  double elapsedMicros() const;
   void writeContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
   /// Microseconds left of a time budget, less the margin and, with `holdBackWrites`, the
   /// expected cost of the mesh-mesh contacts still to write.
   double microsLeft(const FrameSettings& settings, bool holdBackWrites = true) const;
-  std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting) const;
+  /// An even share among `waiting` pairs of what is left once `reserved` node pairs
+  /// (granted earlier in the round) are spent; `micros`: what is left of a time budget.
+  std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting,
+                      std::uint64_t reserved, double micros) const;
 
   std::vector<DeferredPair> m_pairs;   // mesh-mesh, refined (reused: no allocation)
   std::vector<DeferredPair> m_wholes;  // the others: run whole or not at all
   const btDispatcherInfo* m_info = nullptr;  // the dispatch's, during run()
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
-  std::vector<std::uint32_t> m_batch; // the pairs of a parallel pass: indices into m_pairs
+  std::vector<std::uint32_t> m_batch; // the pairs of a round: indices into m_pairs
   std::vector<QueryRequest> m_requests;  // and their requests
+  // A time budget's end for the round's queries, in microseconds since m_start (infinite:
+  // none): each query's time cap is what is left of it when the query starts, so that the
+  // budget is shared across the threads as wall-clock time.
+  double m_roundDeadline = 0.0;
   WorkerPool m_pool;
   FrameStats m_stats;
   Clock::time_point m_start;

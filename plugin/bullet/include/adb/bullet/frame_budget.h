@@ -8,12 +8,13 @@
 // first: those with a static body may take all that is left, the others an even share; one
 // that does not fit keeps its last contacts (refreshed for the new poses). When the budget is
 // smaller than every pair's expected cost, a pair with a static body whose mesh has barely
-// moved keeps its contacts without running. One expected to cost more than the whole budget
-// runs regardless (its estimate is only re-measured by running) every third step, or at once
-// when its mesh has moved past the contact breaking threshold. Each mesh-mesh pair is given
-// what it needed last step, at most an even share of what is left; then, while budget is
-// left, the pair whose contacts are least complete gets as much again, resumed where it
-// stopped. Mesh-box contacts are sampled: each of 16 regions of the tree gives its deepest
+// moved keeps its contacts, and runs only on what the mesh-mesh pairs leave. One expected to
+// cost more than the whole budget runs regardless (its estimate is only re-measured by
+// running) every third step, or at once when its mesh has moved past the contact breaking
+// threshold. Each mesh-mesh pair is given what it needed last step, at most an even share of
+// what is left; then, while budget is left, the pairs whose contacts are least complete get
+// as much again, resumed where they stopped. Mesh-mesh queries run in rounds whose grants
+// are decided before any of them runs (FrameSettings::threads). Mesh-box contacts are sampled: each of 16 regions of the tree gives its deepest
 // points (adb/core/box_query.h, forEachDeepestTriangleNear). A mesh-mesh pair is decided
 // when its traversal completed (exact contacts, sampled per contact region) or reached the
 // quality target (kMin node pairs above pMin, which needs the paper's best-first traversal;
@@ -74,10 +75,12 @@ struct FrameSettings {
   };
   Fronts fronts = Fronts::WithNodePairBudget;
   /// Threads for the mesh-mesh pairs' queries: 0 all hardware threads, 1 none (the default),
-  /// N at most N (oneTBB's pool). Queries whose schedule does not depend on each other's
-  /// outcome (a step without a budget) run in parallel; their bookkeeping and every contact
-  /// written to Bullet happen on the thread that called stepSimulation, in pair order, so the
-  /// simulation is the same bit for bit at any count. Bullet's own work stays on that thread.
+  /// N at most N (oneTBB's pool). The queries run in rounds of up to 16 pairs whose grants
+  /// are decided before any of them runs (without a budget, a group of pairs is one round);
+  /// their bookkeeping and every contact written to Bullet happen on the thread that called
+  /// stepSimulation, in pair order. So with or without a node-pair budget the simulation is
+  /// the same bit for bit at any count. A time budget is wall-clock time, shared by the
+  /// threads. Bullet's own work stays on the stepping thread.
   int threads = 1;
 };
 
