@@ -379,16 +379,41 @@ void FrameScheduler::beginRound(const FrameSettings& settings) {
 // The round's traversals, each touching only its own pair and the immutable trees, so that
 // they may run on any thread. A query's time cap is what is left of the round's deadline
 // when it starts: the threads share the step's wall clock, not a sum of their times.
+// A query that decided its pair also computes the pair's contact points (final: they are
+// written in pair order after the round).
 void FrameScheduler::runRound(const FrameSettings& settings) {
-  if (m_batch.empty()) return;
   auto job = [&](std::size_t k) {
     QueryRequest& request = m_requests[k];
     if (!std::isinf(m_roundDeadline)) {
       request.micros = std::max(0.0, m_roundDeadline - elapsedMicros());
     }
-    traverse(m_pairs[m_batch[k]], request, settings);
+    DeferredPair& pair = m_pairs[m_batch[k]];
+    traverse(pair, request, settings);
+    if (!isBudgetStop(pair.meshMesh().result().stop)) {
+      pair.meshMesh().computeContacts(pair, settings);
+    }
   };
-  m_pool.run(m_batch.size(), job);
+  runOnPool(m_batch.size(), job);
+}
+
+// The contact points of the pairs the budget cut, on the pool; they are written in pair
+// order by writeContacts.
+void FrameScheduler::computeLateContacts(const FrameSettings& settings) {
+  m_batch.clear();
+  for (std::uint32_t i = 0; i < m_pairs.size(); ++i) {
+    if (!m_pairs[i].written) m_batch.push_back(i);
+  }
+  auto job = [&](std::size_t k) {
+    DeferredPair& pair = m_pairs[m_batch[k]];
+    pair.meshMesh().computeContacts(pair, settings);
+  };
+  runOnPool(m_batch.size(), job);
+}
+
+template <class Job>
+void FrameScheduler::runOnPool(std::size_t jobs, Job& job) {
+  if (jobs == 0) return;
+  m_pool.run(jobs, job);
   if (m_pool.threads() == 1) return;  // nothing ran in parallel
   m_stats.parallelMicros += m_pool.lastWallMicros();
   const auto& busy = m_pool.lastBusyMicros();
@@ -563,6 +588,8 @@ void FrameScheduler::meshPairs(std::vector<MeshPairReport>& out) const {
 
 // The pairs still unwritten (those the budget cut), then the step's statistics.
 void FrameScheduler::writeContacts(const FrameSettings& settings) {
+  // A time budget with no room left for one cut pair's contacts computes none of them.
+  if (!outOfTime(settings)) computeLateContacts(settings);
   const double early = m_stats.contactMicros;
   std::uint32_t late = 0;
   MeshPairTally tally;

@@ -86,6 +86,12 @@ class FrameScheduler {
   /// Runs the traversals of the round's batch (m_batch, m_requests) on the pool; the caller
   /// then counts them in batch order on this thread.
   void runRound(const FrameSettings& settings);
+  /// Computes the contact points of the pairs not written yet (those the budget cut), on the
+  /// pool.
+  void computeLateContacts(const FrameSettings& settings);
+  /// job(i) for i in [0, jobs) on the pool, its time added to the step's statistics.
+  template <class Job>
+  void runOnPool(std::size_t jobs, Job& job);
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);

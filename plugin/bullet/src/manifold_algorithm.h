@@ -104,6 +104,8 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
                                     const btCollisionObjectWrapper* body1,
                                     btManifoldResult* result);
   detail::FrameScheduler* scheduler() const { return m_scheduler; }
+  /// The pair's manifold, or null before its first dispatch; reading it makes nothing.
+  const btPersistentManifold* existingManifold() const { return m_manifold; }
   /// The manifold of this step's speculative contacts, or null when there are none to make.
   btPersistentManifold* speculativeManifold() const {
     return m_speculative > 0 ? m_speculativeManifold : nullptr;

@@ -61,9 +61,9 @@ const MeshShape& meshOf(const btCollisionObjectWrapper* body) {
   return *static_cast<const MeshShape*>(body->getCollisionShape());
 }
 
-btVector3 boxCentre(const btCollisionObjectWrapper* body) {
+btVector3 boxCentre(const btCollisionShape* shape, const btTransform& transform) {
   btVector3 lo, hi;
-  body->getCollisionShape()->getAabb(body->getWorldTransform(), lo, hi);
+  shape->getAabb(transform, lo, hi);
   return 0.5 * (lo + hi);
 }
 
@@ -80,7 +80,9 @@ std::uint64_t MeshMeshAlgorithm::collideNow(const btCollisionObjectWrapper* body
   }
   const QueryResult& r = m_traversal.step();
   m_lastStop = r.stop;
-  addContacts(body0, body1, *result, FrameSettings{});
+  computePoints(body0->getCollisionShape(), body0->getWorldTransform(),
+                body1->getCollisionShape(), body1->getWorldTransform(), FrameSettings{});
+  writePoints(body0, body1, *result);
   return r.nodePairs + r.triangleTests;
 }
 
@@ -95,6 +97,7 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
   }
   const QueryResult& r = m_traversal.step(budget);
   m_lastStop = r.stop;
+  m_pointsReady = false;
   // The result's counters cover every step of this query: what the pair used this frame.
   m_neededFromScratch = r.fromScratchNodePairs;
   if (!isBudgetStop(r.stop)) {
@@ -128,33 +131,51 @@ bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform
   }
 }
 
+void MeshMeshAlgorithm::computeContacts(const detail::DeferredPair& pair,
+                                        const FrameSettings& settings) {
+  computePoints(pair.shape0, pair.transform0, pair.shape1, pair.transform1, settings);
+}
+
 ContactCount MeshMeshAlgorithm::writeContacts(const detail::DeferredPair& pair,
                                               const FrameSettings& settings) {
+  if (!m_pointsReady) computeContacts(pair, settings);
   const detail::PairWrappers wrappers(pair);
   detail::SpeculativeResult result(&wrappers.body0, &wrappers.body1, speculativeManifold(),
                                    contactReach());
-  return addContacts(&wrappers.body0, &wrappers.body1, result, settings);
+  return writePoints(&wrappers.body0, &wrappers.body1, result);
 }
 
-ContactCount MeshMeshAlgorithm::addContacts(const btCollisionObjectWrapper* body0,
-                                            const btCollisionObjectWrapper* body1,
-                                            btManifoldResult& result,
-                                            const FrameSettings& settings) {
-  btPersistentManifold* manifold = manifoldFor(body0, body1, &result);
-  const MeshShape& shape0 = meshOf(body0);
-  const MeshShape& shape1 = meshOf(body1);
-  const detail::PosedPair posed{&shape0.tree(), toPose(body0->getWorldTransform()),
-                                &shape1.tree(), toPose(body1->getWorldTransform()),
-                                shape0.data().facing, shape1.data().facing};
-  const Vec3 hint = detail::separationHint(manifold, boxCentre(body0), boxCentre(body1));
-  ContactCount count;
-  count.exact = detail::addExactContacts(posed, m_traversal.witnesses(), hint, result);
+void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
+                                      const btTransform& transform0,
+                                      const btCollisionShape* shape1,
+                                      const btTransform& transform1,
+                                      const FrameSettings& settings) {
+  const auto& mesh0 = *static_cast<const MeshShape*>(shape0);
+  const auto& mesh1 = *static_cast<const MeshShape*>(shape1);
+  const detail::PosedPair posed{&mesh0.tree(), toPose(transform0), &mesh1.tree(),
+                                toPose(transform1), mesh0.data().facing, mesh1.data().facing};
+  // The manifold was made when Bullet dispatched the pair, and only this pair writes it: read
+  // here, on whichever thread, before this step's points are written.
+  const Vec3 hint = detail::separationHint(existingManifold(), boxCentre(shape0, transform0),
+                                           boxCentre(shape1, transform1));
+  m_points.clear();
+  m_pointCount = ContactCount{};
+  m_pointCount.exact = detail::addExactContacts(posed, m_traversal.witnesses(), hint, m_points);
   if (isBudgetStop(m_lastStop) || m_lastStop == StopReason::QualityReached) {
-    count.plausible = detail::addPlausibleContacts(posed, m_traversal.openPairs(), settings,
-                                                   hint, result, *manifold);
+    m_pointCount.plausible = detail::addPlausibleContacts(posed, m_traversal.openPairs(),
+                                                          settings, hint, m_points);
   }
+  m_pointsReady = true;
+}
+
+ContactCount MeshMeshAlgorithm::writePoints(const btCollisionObjectWrapper* body0,
+                                            const btCollisionObjectWrapper* body1,
+                                            btManifoldResult& result) {
+  btPersistentManifold* manifold = manifoldFor(body0, body1, &result);
+  detail::writeContactPoints(m_points, result, *manifold);
   result.refreshContactPoints();
-  return count;
+  m_pointsReady = false;
+  return m_pointCount;
 }
 
 }  // namespace adb

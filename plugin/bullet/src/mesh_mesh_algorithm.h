@@ -7,14 +7,16 @@
 // contactTest/contactPairTest) the pair is answered at once in exact mode.
 #pragma once
 
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
 #include <LinearMath/btTransform.h>
 
 #include <cstdint>
 #include <vector>
 
 #include "adb/bullet/frame_budget.h"
-#include "manifold_algorithm.h"
 #include "adb/core/query.h"
+#include "manifold_algorithm.h"
+#include "pair_contacts.h"
 
 namespace adb {
 
@@ -47,7 +49,11 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   const QueryResult& result() const { return m_traversal.result(); }
   /// The work of the last call to query().
   const StepWork& lastStep() const { return m_traversal.lastStep(); }
-  /// Writes the contacts of the last query into the pair's manifold.
+  /// Computes the contact points of the last query: geometry that reads only this pair's
+  /// trees, traversal and manifold, so that the queries' jobs may run it on any thread.
+  void computeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
+  /// Writes the contacts of the last query into the pair's manifold (computing them first if
+  /// computeContacts has not since the query): the stepping thread's part.
   ContactCount writeContacts(const detail::DeferredPair& pair, const FrameSettings& settings);
   /// Whether the budget cut the pair's last query (until this step's first query: last
   /// step's).
@@ -66,14 +72,22 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   // Resets the traversal for a new query; false (and an empty traversal) for a bad pose.
   bool start(const AdbTree& tree0, const btTransform& transform0, const AdbTree& tree1,
              const btTransform& transform1, const QuerySettings& settings);
-  ContactCount addContacts(const btCollisionObjectWrapper* body0,
-                           const btCollisionObjectWrapper* body1, btManifoldResult& result,
-                           const FrameSettings& settings);
+  /// The contact points of the last query for bodies posed at `transform0` and `transform1`
+  /// into m_points.
+  void computePoints(const btCollisionShape* shape0, const btTransform& transform0,
+                     const btCollisionShape* shape1, const btTransform& transform1,
+                     const FrameSettings& settings);
+  /// Writes m_points through `result` into the pair's manifold.
+  ContactCount writePoints(const btCollisionObjectWrapper* body0,
+                           const btCollisionObjectWrapper* body1, btManifoldResult& result);
 
   Traversal m_traversal;  // grows to this pair's largest query, then stays
   StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
   std::uint64_t m_needed = 0;
   std::uint64_t m_neededFromScratch = 0;
+  detail::ContactPoints m_points;  // the last query's contact points, until written
+  ContactCount m_pointCount;
+  bool m_pointsReady = false;  // m_points are the last query's
 };
 
 }  // namespace adb

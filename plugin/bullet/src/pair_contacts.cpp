@@ -114,13 +114,13 @@ btManifoldPoint* findPoint(btPersistentManifold& manifold, const btVector3& poin
 // would close the gap within the step). The normal is the direction between the closest
 // points, as Bullet's convex algorithms take it. Returns whether a point was written.
 bool addNearContact(const PosedPair& pair, const Vec3 a[3], const Vec3 b[3],
-                    btManifoldResult& out) {
+                    ContactPoints& out) {
   const TriangleDistance d = triangleDistance(a[0], a[1], a[2], b[0], b[1], b[2]);
   if (!(d.distance > 0.0) || !std::isfinite(d.distance)) return false;
   const Vec3 normal = (d.pointOnB - d.pointOnA) / d.distance;  // from A towards B
   // As for crossing triangles: A's surface must face B, and B's must face back.
   if (facesAway(a, pair.facingA, -normal) || facesAway(b, pair.facingB, normal)) return false;
-  out.addContactPoint(toBt(-normal), toBt(d.pointOnB), static_cast<btScalar>(d.distance));
+  out.push_back({toBt(-normal), toBt(d.pointOnB), static_cast<btScalar>(d.distance)});
   return true;
 }
 
@@ -139,8 +139,21 @@ Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCe
   return fromBt(boxCentre1 - boxCentre0);
 }
 
+void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
+                        btPersistentManifold& manifold) {
+  for (const PendingContact& c : points) {
+    out.addContactPoint(c.normalOnB, c.pointOnB, c.distance);
+    if (!c.softened) continue;
+    btManifoldPoint* point = findPoint(manifold, c.pointOnB);
+    if (!point) continue;
+    point->m_contactERP = c.erp;
+    point->m_contactCFM = c.cfm;
+    point->m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_CFM | BT_CONTACT_FLAG_HAS_CONTACT_ERP;
+  }
+}
+
 std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>& witnesses,
-                               const Vec3& hint, btManifoldResult& out) {
+                               const Vec3& hint, ContactPoints& out) {
   std::uint32_t written = 0;
   for (const Witness& w : witnesses) {
     if (!w.isExact()) continue;
@@ -157,7 +170,7 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
     if (facesAway(a, pair.facingA, -c.normal) || facesAway(b, pair.facingB, c.normal)) continue;
     // Bullet: the normal on B points from body 1 towards body 0, the point lies on body 1,
     // and a negative distance is a penetration.
-    out.addContactPoint(toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth));
+    out.push_back({toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth)});
     ++written;
   }
   return written;
@@ -165,7 +178,7 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
 
 std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<OpenPair>& open,
                                    const FrameSettings& settings, const Vec3& hint,
-                                   btManifoldResult& out, btPersistentManifold& manifold) {
+                                   ContactPoints& out) {
   // The most probable pairs, kept sorted in a fixed buffer: no allocation per step.
   const int limit = std::clamp(settings.maxPlausibleContacts, 0, kMaxPlausibleContacts);
   std::array<OpenPair, kMaxPlausibleContacts> best;
@@ -182,18 +195,17 @@ std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<Open
   const double certain = 1.0 - settings.pAccept;
   for (int i = 0; i < count; ++i) {
     const PlausibleContact c = plausibleContact(pair, best[i], hint);
-    const btVector3 pointOnB = toBt(c.pointOnB);
-    out.addContactPoint(toBt(-c.normal), pointOnB, static_cast<btScalar>(-c.depth));
-    if (!settings.softenPlausible) continue;
-    btManifoldPoint* point = findPoint(manifold, pointOnB);
-    if (!point) continue;
-    const double p = std::clamp(static_cast<double>(best[i].p), 0.0, 1.0);
-    point->m_contactERP = static_cast<btScalar>(kDefaultContactErp * p);
-    // (1 - p) / (1 - pAccept) runs from 1 at the threshold to 0 when certain; guarded for
-    // pAccept = 1, where only p = 1 is accepted and nothing is softened.
-    point->m_contactCFM =
-        static_cast<btScalar>(certain > 0.0 ? settings.softCfm * (1.0 - p) / certain : 0.0);
-    point->m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_CFM | BT_CONTACT_FLAG_HAS_CONTACT_ERP;
+    PendingContact point{toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth)};
+    if (settings.softenPlausible) {
+      const double p = std::clamp(static_cast<double>(best[i].p), 0.0, 1.0);
+      point.softened = true;
+      point.erp = static_cast<btScalar>(kDefaultContactErp * p);
+      // (1 - p) / (1 - pAccept) runs from 1 at the threshold to 0 when certain; guarded for
+      // pAccept = 1, where only p = 1 is accepted and nothing is softened.
+      point.cfm =
+          static_cast<btScalar>(certain > 0.0 ? settings.softCfm * (1.0 - p) / certain : 0.0);
+    }
+    out.push_back(point);
   }
   return static_cast<std::uint32_t>(count);
 }

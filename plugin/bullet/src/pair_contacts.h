@@ -1,5 +1,6 @@
-// Internal: contact points of a mesh-mesh pair from a query's evidence, written into Bullet's
-// manifold. Exact contacts come from intersecting triangle pairs (triangleContact); plausible
+// Internal: contact points of a mesh-mesh pair from a query's evidence, computed on any
+// thread into a pair's ContactPoints, then written into Bullet's manifold on the stepping
+// thread. Exact contacts come from intersecting triangle pairs (triangleContact); plausible
 // ones from node pairs a budget left unresolved (their surface statistics).
 #pragma once
 
@@ -25,6 +26,26 @@ struct PosedPair {
   int facingA = 0, facingB = 0;
 };
 
+/// A contact point as Bullet takes it: the normal on body 1 points towards body 0, the point
+/// lies on body 1, and a negative distance is a penetration. A softened (plausible) point
+/// carries its own ERP and CFM.
+struct PendingContact {
+  btVector3 normalOnB;
+  btVector3 pointOnB;
+  btScalar distance = 0;
+  bool softened = false;
+  btScalar erp = 0, cfm = 0;
+};
+
+/// One pair's contact points of a step, in the order they are written (reused: it grows to
+/// the pair's most points, then stays).
+using ContactPoints = std::vector<PendingContact>;
+
+/// Writes `points` through `out` (btManifoldResult or a SpeculativeResult), in order, and sets
+/// the softened ones' ERP and CFM on the points `manifold` kept. The stepping thread's part.
+void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
+                        btPersistentManifold& manifold);
+
 /// The preferred separation direction from body 0 towards body 1 for this step: the last
 /// step's contact normals when the manifold has points (warm starting: resting contact keeps
 /// its normal), else the direction between the two world boxes' centres.
@@ -35,16 +56,16 @@ Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCe
 /// skipped), except where a triangle of a closed mesh faces away from the contact normal:
 /// such a pair is not two surfaces meeting (coplanar side faces of stacked boxes, the far
 /// wall of a penetrated tube) and pushing along it shoves bodies sideways. Returns the
-/// number of points written.
+/// number of points added to `out`.
 std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>& witnesses,
-                               const Vec3& hint, btManifoldResult& out);
+                               const Vec3& hint, ContactPoints& out);
 
 /// Plausible contacts from the unresolved node pairs with probability >= settings.pAccept
 /// (the most probable first, at most settings.maxPlausibleContacts), softened by their
-/// probability when settings.softenPlausible. Returns the number of points written.
+/// probability when settings.softenPlausible. Returns the number of points added to `out`.
 std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<OpenPair>& open,
                                    const FrameSettings& settings, const Vec3& hint,
-                                   btManifoldResult& out, btPersistentManifold& manifold);
+                                   ContactPoints& out);
 
 /// Contacts a pair may get from plausible evidence at most: a bound for the fixed-size
 /// selection buffer (no allocation per step).

@@ -161,8 +161,10 @@ struct FrameStats {
   std::uint32_t exactContacts = 0;  ///< contact points from intersecting triangle pairs
   std::uint32_t plausibleContacts = 0;  ///< contact points from unresolved node pairs
   double micros = 0.0;              ///< wall clock of the step's pair work, contacts included
-  double contactMicros = 0.0;       ///< of which writing contacts (decided pairs at once, cut
-                                    ///< ones after the queries)
+  double contactMicros = 0.0;       ///< of which writing contacts into Bullet's manifolds
+                                    ///< (decided pairs at once, cut ones after the queries;
+                                    ///< their points are computed with the queries, on the
+                                    ///< pool's threads)
   /// Per pair, the probability that its collision answer (touching or not) is right: 1 when
   /// decided exactly or when a triangle pair was found to intersect; otherwise the
   /// traversal's fitted estimate (adb::QueryResult::confidence, calibrated:
