@@ -11,14 +11,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr const char* kStepColumns =
-    "step,time,seconds,budget_use,mesh_pairs,cut_pairs,mean_confidence,worst_confidence,"
-    "overlapping,events,contacts,penetration,probed_penetration,kinetic,energy,at_rest,"
-    "node_pairs,needed_node_pairs,from_scratch_node_pairs,other_node_pairs,lost,"
-    "probed_relative,probed_mean,frame_us,contact_us,pairs,exact_pairs,quality_pairs,"
-    "exact_contacts,plausible_contacts,mean_completeness,worst_completeness,out_of_bounds,"
-    "out_of_bounds_relative,threads,parallel_us\n";
-
 // The q-quantile of `v` (nearest rank below), 0 when empty.
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -37,6 +29,36 @@ const std::string& bodyName(const SceneWorld& world, std::uint32_t i) {
 }
 
 }  // namespace
+
+std::array<StepCell, kStepColumns> stepCells(const StepRecord& r,
+                                             const PenetrationReport* probe) {
+  const FrameStats& f = r.frame;
+  auto count = [](const char* column, double value) { return StepCell{column, value, true}; };
+  auto real = [](const char* column, double value) { return StepCell{column, value, false}; };
+  return {{count("step", r.step), real("time", r.time), real("seconds", r.seconds),
+           real("budget_use", r.budgetUse), count("mesh_pairs", r.meshPairs),
+           count("cut_pairs", r.cutPairs), real("mean_confidence", r.meanConfidence),
+           real("worst_confidence", r.worstConfidence), count("overlapping", r.overlapping),
+           count("events", r.events), count("contacts", r.contacts),
+           real("penetration", r.penetration),
+           real("probed_penetration", probe ? probe->depth : -1.0), real("kinetic", r.kinetic),
+           real("energy", r.energy), count("at_rest", r.atRest),
+           count("node_pairs", static_cast<double>(f.nodePairs)),
+           count("needed_node_pairs", static_cast<double>(f.neededNodePairs)),
+           count("from_scratch_node_pairs", static_cast<double>(f.fromScratchNodePairs)),
+           count("other_node_pairs", static_cast<double>(f.otherNodePairs)),
+           count("lost", r.lost), real("probed_relative", probe ? probe->relative : -1.0),
+           real("probed_mean", probe ? probe->meanDepth : -1.0), real("frame_us", f.micros),
+           real("contact_us", f.contactMicros), count("pairs", f.pairs),
+           count("exact_pairs", f.exactPairs), count("quality_pairs", f.qualityPairs),
+           count("exact_contacts", f.exactContacts),
+           count("plausible_contacts", f.plausibleContacts),
+           real("mean_completeness", f.meanCompleteness),
+           real("worst_completeness", f.worstCompleteness),
+           real("out_of_bounds", r.outOfBounds),
+           real("out_of_bounds_relative", r.outOfBoundsRelative), count("threads", f.threads),
+           real("parallel_us", f.parallelMicros)}};
+}
 
 std::string effectsName(const Effects& effects) {
   switch (effects.kind) {
@@ -76,8 +98,34 @@ Recorder::Recorder(const SceneWorld& world, const std::filesystem::path& folder)
     throw std::runtime_error("cannot create folder '" + folder.string() + "': " + error.message());
   }
   open(m_steps, "steps.csv");
-  m_steps << kStepColumns;
+  const char* separator = "";
+  for (const StepCell& cell : stepCells(StepRecord{})) {
+    m_steps << separator << cell.column;
+    separator = ",";
+  }
+  m_steps << '\n';
   if (world.scene().effects.kind == Effects::Kind::Overlap) open(m_events, "events.jsonl");
+}
+
+// Counts as integers (a double holds every count below 2^53 exactly), the rest as the
+// stream writes a double.
+void Recorder::writeRow(const std::array<StepCell, kStepColumns>& cells) {
+  const char* separator = "";
+  for (const StepCell& cell : cells) {
+    m_steps << separator;
+    if (cell.integer) {
+      m_steps << static_cast<long long>(cell.value);
+    } else {
+      m_steps << cell.value;
+    }
+    separator = ",";
+  }
+  m_steps << '\n';
+}
+
+void Recorder::flush() {
+  if (m_steps.is_open()) m_steps.flush();
+  if (m_events.is_open()) m_events.flush();
 }
 
 void Recorder::open(std::ofstream& stream, const std::string& name) {
@@ -88,7 +136,6 @@ void Recorder::open(std::ofstream& stream, const std::string& name) {
 
 void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
   const StepRecord& r = world.last();
-  const double probed = probe ? probe->depth : -1.0;
   RunSummary& s = m_summary;
   ++s.steps;
   m_stepSeconds += r.seconds;
@@ -123,20 +170,7 @@ void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
   s.energyAtEnd = r.energy;
   s.events += r.events;
   if (m_steps.is_open()) {
-    m_steps << r.step << ',' << r.time << ',' << r.seconds << ',' << r.budgetUse << ','
-            << r.meshPairs << ',' << r.cutPairs << ',' << r.meanConfidence << ','
-            << r.worstConfidence << ',' << r.overlapping << ',' << r.events << ','
-            << r.contacts << ',' << r.penetration << ',' << probed << ',' << r.kinetic << ','
-            << r.energy << ',' << r.atRest << ',' << r.frame.nodePairs << ','
-            << r.frame.neededNodePairs << ',' << r.frame.fromScratchNodePairs << ','
-            << r.frame.otherNodePairs << ',' << r.lost << ','
-            << (probe ? probe->relative : -1.0) << ',' << (probe ? probe->meanDepth : -1.0)
-            << ',' << r.frame.micros << ',' << r.frame.contactMicros << ',' << r.frame.pairs
-            << ',' << r.frame.exactPairs << ',' << r.frame.qualityPairs << ','
-            << r.frame.exactContacts << ',' << r.frame.plausibleContacts << ','
-            << r.frame.meanCompleteness << ',' << r.frame.worstCompleteness << ','
-            << r.outOfBounds << ',' << r.outOfBoundsRelative << ',' << r.frame.threads << ','
-            << r.frame.parallelMicros << '\n';
+    writeRow(stepCells(r, probe));
   }
   if (m_events.is_open()) {
     for (const OverlapEvent& e : world.events()) {

@@ -261,18 +261,23 @@ ViewSpec readView(const Json& j, const std::string& file) {
 }
 
 ShapeSpec readShape(const std::string& name, const Json& j, const std::string& file,
-                    const std::filesystem::path& folder) {
+                    const std::filesystem::path& folder, const GivenMeshes& meshes) {
   Object o(j, "shapes." + keyText(name), file);
   ShapeSpec s;
   s.name = name;
   const std::string kind = o.string("type");
   if (kind == "mesh") {
     s.kind = ShapeSpec::Kind::Mesh;
-    const std::filesystem::path given = o.string("file");
-    s.file = given.is_absolute() ? given : folder / given;
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(s.file, error)) {
-      o.fail(o.at("file"), "no mesh file " + inQuotes(s.file.string()));
+    const auto inCode = meshes.find(name);
+    if (inCode != meshes.end() && !o.has("file")) {
+      s.given = inCode->second;
+    } else {
+      const std::filesystem::path given = o.string("file");
+      s.file = given.is_absolute() ? given : folder / given;
+      std::error_code error;
+      if (!std::filesystem::is_regular_file(s.file, error)) {
+        o.fail(o.at("file"), "no mesh file " + inQuotes(s.file.string()));
+      }
     }
     if (o.has("size") && (o.has("scale") || o.has("recentre"))) {
       o.fail(o.at("size"), "give either 'size' or 'scale' and 'recentre', not both");
@@ -499,7 +504,7 @@ std::string syntaxError(const std::string& message) {
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& name,
-                 const std::filesystem::path& folder) {
+                 const std::filesystem::path& folder, const GivenMeshes& meshes) {
   Json json;
   try {
     json = Json::parse(text);
@@ -522,7 +527,7 @@ Scene parseScene(const std::string& text, const std::string& name,
     throw SceneError(name, "shapes", "expected an object of named shapes");
   }
   for (auto it = shapes.begin(); it != shapes.end(); ++it) {
-    scene.shapes.push_back(readShape(it.key(), it.value(), name, folder));
+    scene.shapes.push_back(readShape(it.key(), it.value(), name, folder, meshes));
   }
   const Json& bodies = top.require("bodies");
   if (!bodies.is_array() || bodies.empty()) {

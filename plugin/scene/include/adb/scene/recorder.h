@@ -7,6 +7,7 @@
 // - summary.json: the run's summary (RunSummary), when finish() is called.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -61,6 +62,20 @@ struct RunSummary {
 
 std::string effectsName(const Effects& effects);
 
+/// One cell of a steps.csv row: its column's name and the step's value.
+struct StepCell {
+  const char* column;
+  double value;
+  bool integer;  ///< a count, written without a fraction
+};
+inline constexpr std::size_t kStepColumns = 36;
+/// A step's row of steps.csv, column by column, in the file's order (docs/scenes.md says what
+/// each means): the one place the columns are listed, for the file and for the Python
+/// module's World.stats(). `probe`: the step's penetration from the geometry, if measured
+/// (its columns hold -1 otherwise).
+std::array<StepCell, kStepColumns> stepCells(const StepRecord& r,
+                                             const PenetrationReport* probe = nullptr);
+
 class Recorder {
  public:
   /// Records without writing.
@@ -70,12 +85,15 @@ class Recorder {
 
   /// After each step. `probe`: the step's penetration from the geometry, if measured.
   void record(const SceneWorld& world, const PenetrationReport* probe = nullptr);
+  /// Hands what was recorded so far to the files (a reader may open them mid-run).
+  void flush();
   /// Writes summary.json (with a folder) and returns the summary.
   const RunSummary& finish();
   const RunSummary& summary() const { return m_summary; }
 
  private:
   void open(std::ofstream& stream, const std::string& name);
+  void writeRow(const std::array<StepCell, kStepColumns>& cells);
 
   std::filesystem::path m_folder;
   std::ofstream m_steps, m_events;

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -27,8 +29,13 @@ class SceneError : public std::runtime_error {
 /// and must exist (they are read when the scene is built). Throws SceneError.
 Scene loadScene(const std::filesystem::path& file);
 
+/// Meshes given in code, by the name of the mesh shape that takes one.
+using GivenMeshes = std::map<std::string, std::shared_ptr<const TriangleMesh>>;
+
 /// The same from text; `name` stands for the file in errors, `folder` resolves mesh files.
+/// A shape of type "mesh" without a "file" takes the mesh `meshes` holds under its name (a
+/// scene built in code, or in Python).
 Scene parseScene(const std::string& text, const std::string& name,
-                 const std::filesystem::path& folder = {});
+                 const std::filesystem::path& folder = {}, const GivenMeshes& meshes = {});
 
 }  // namespace adb::scene
