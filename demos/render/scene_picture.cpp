@@ -1,6 +1,7 @@
 #include "render/scene_picture.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "render/colour_map.h"
 #include "render/rasterizer.h"
@@ -81,6 +82,22 @@ render::Image drawScene(const scene::SceneWorld& world, const render::Camera& ca
   const int scale = static_cast<int>(caption.size()) * 12 <= width - 16 ? 2 : 1;
   r.drawText(8, 8, caption, render::Rgb{20, 20, 20}, scale);
   return r.image();
+}
+
+std::string sceneCaption(const scene::SceneWorld& world) {
+  const scene::StepRecord& r = world.last();
+  const scene::BudgetSpec& b = world.scene().world.budget;
+  char budget[64] = "";
+  if (world.built().budget && b.kind == scene::BudgetSpec::Kind::Micros) {
+    std::snprintf(budget, sizeof budget, " budget %.0f us", b.micros);
+  } else if (world.built().budget) {
+    std::snprintf(budget, sizeof budget, " budget %llu pairs",
+                  static_cast<unsigned long long>(b.nodePairs));
+  }
+  char text[200];
+  std::snprintf(text, sizeof text, "%s%s  step %d  %.2f s  %.1f ms/step",
+                toString(world.backend()), budget, r.step, r.time, 1e3 * r.seconds);
+  return text;
 }
 
 }  // namespace adb::demo

@@ -15,6 +15,10 @@ namespace adb::demo {
 /// seen from the front, right and above.
 render::Camera sceneCamera(const scene::SceneWorld& world);
 
+/// The caption of a picture after the world's last step: the backend, its budget, the step,
+/// the simulated time and the step's wall clock.
+std::string sceneCaption(const scene::SceneWorld& world);
+
 render::Image drawScene(const scene::SceneWorld& world, const render::Camera& camera, int width,
                         int height, const std::string& caption);
 

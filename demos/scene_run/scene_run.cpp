@@ -68,21 +68,6 @@ int framesEvery(const SceneRunOptions& o, const Scene& s) {
   return std::max(1, static_cast<int>(std::lround(1.0 / (30.0 * s.world.timeStep))));
 }
 
-std::string caption(const SceneWorld& world, const scene::StepRecord& r) {
-  const scene::BudgetSpec& b = world.scene().world.budget;
-  char budget[64] = "";
-  if (world.built().budget && b.kind == scene::BudgetSpec::Kind::Micros) {
-    std::snprintf(budget, sizeof budget, " budget %.0f us", b.micros);
-  } else if (world.built().budget) {
-    std::snprintf(budget, sizeof budget, " budget %llu pairs",
-                  static_cast<unsigned long long>(b.nodePairs));
-  }
-  char text[200];
-  std::snprintf(text, sizeof text, "%s%s  step %d  %.2f s  %.1f ms/step",
-                toString(world.backend()), budget, r.step, r.time, 1e3 * r.seconds);
-  return text;
-}
-
 // The steps of the strip's frames: as asked, or an eighth of the run, its middle and its end.
 std::vector<int> stripSteps(const SceneRunOptions& o, int steps) {
   if (!o.stripSteps.empty()) return o.stripSteps;
@@ -152,7 +137,7 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
     const bool inStrip = std::find(strip.begin(), strip.end(), step) != strip.end();
     const bool inMovie = step % frameEvery == 0 || step == steps;
     if (o.render && (inStrip || inMovie)) {
-      result.lastFrame = drawScene(world, camera, o.width, o.height, caption(world, r));
+      result.lastFrame = drawScene(world, camera, o.width, o.height, sceneCaption(world));
       if (inStrip) result.strip.push_back(result.lastFrame);
       result.rendered = true;
     }
