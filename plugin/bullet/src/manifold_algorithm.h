@@ -111,8 +111,6 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
     return m_speculative > 0 ? m_speculativeManifold : nullptr;
   }
 
-  bool m_swapped;
-
  private:
   /// Makes the pair's manifold if it has none (Bullet's dispatcher owns it; released with
   /// the algorithm).
@@ -148,6 +146,14 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   btScalar m_lastOrigin[3] = {0, 0, 0};
   float m_lastRotation[4] = {0, 0, 0, 1};
   float m_meshReach = 0;  // the farthest point of the mesh from its origin, bounded
+
+ protected:
+  // Declared here rather than with the protected functions above: it fills the padding after
+  // m_meshReach, which keeps every algorithm within Bullet's default pool element (192 bytes
+  // in double precision; Dynamics.DefaultAlgorithmPoolHoldsTheAlgorithm).
+  bool m_swapped;
+
+ private:
   btScalar m_threshold = 0;    // the manifold's breaking threshold as Bullet made it
   btScalar m_speculative = 0;  // speculativeReach() of this step
 };

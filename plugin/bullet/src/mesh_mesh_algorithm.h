@@ -81,12 +81,14 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   ContactCount writePoints(const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, btManifoldResult& result);
 
+  // The small members last, together, so that they share one padded word: the algorithm
+  // must fit Bullet's default pool element (algorithmPoolElementSize).
   Traversal m_traversal;  // grows to this pair's largest query, then stays
-  StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
   std::uint64_t m_needed = 0;
   std::uint64_t m_neededFromScratch = 0;
   detail::ContactPoints m_points;  // the last query's contact points, until written
   ContactCount m_pointCount;
+  StopReason m_lastStop = StopReason::Completed;  // why the last query stopped
   bool m_pointsReady = false;  // m_points are the last query's
 };
 
