@@ -4,7 +4,7 @@
 #   make test   build and run the test suite
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all deps build demo test test-asan test-tsan fuzz bench clean
+.PHONY: all deps build demo test test-asan test-tsan fuzz bench python clean
 
 all: build
 
@@ -48,8 +48,14 @@ fuzz:
 	cmake --build --preset fuzz -j $(JOBS)
 	bash tests/fuzz/run_fuzz.sh $(FUZZ_SECONDS)
 
+# The Python module installed into a venv (.venv) that sees Debian's numpy and matplotlib;
+# then `. .venv/bin/activate && python3 -c "import adb"` (docs/python.md).
+python: deps
+	/usr/bin/python3 -m venv --system-site-packages .venv
+	.venv/bin/pip install --no-build-isolation ./python
+
 bench: build
 	./build/bin/adb-bench-core
 
 clean:
-	rm -rf build build-debug build-asan build-tsan build-fuzz
+	rm -rf build build-debug build-asan build-tsan build-fuzz python/build python/*.egg-info

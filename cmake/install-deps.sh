@@ -16,7 +16,12 @@ packages=(
   libcli11-dev             # every executable's command line
   libpng-dev               # adb-demo --render frames
   libtbb-dev               # oneTBB: adb's pair queries on a worker pool (FrameSettings::threads)
-  python3-matplotlib       # plots of the study
+  python3-matplotlib       # plots of the study and of the Python examples
+  # The Python module (python/, issue 28): built against Debian's /usr/bin/python3, whose
+  # numpy and pytest these are; pip, venv, setuptools and wheel install it from a checkout
+  # with no package index (pip install --no-build-isolation).
+  python3-dev pybind11-dev python3-numpy python3-pytest
+  python3-pip python3-venv python3-setuptools python3-wheel
 )
 
 # `install-deps.sh fuzz`: also clang and its libFuzzer runtime, for make fuzz only.

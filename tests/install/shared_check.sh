@@ -8,7 +8,7 @@ source=$1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake -S "$source" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
-  -DADB_BUILD_TESTS=OFF -DADB_BUILD_DEMOS=OFF > "$work/configure.log"
+  -DADB_BUILD_TESTS=OFF -DADB_BUILD_DEMOS=OFF -DADB_BUILD_PYTHON=OFF > "$work/configure.log"
 cmake --build "$work/build" -j "$(nproc)" > "$work/build.log" 2>&1 ||
   { tail -50 "$work/build.log"; exit 1; }
 for lib in adb_core adb_bullet adb_io; do

@@ -1,0 +1,121 @@
+"""What the Python module costs over the C++ it calls, both measured in one run (issue 28's
+targets; docs/python.md has the figures):
+
+1. collide_many over ~10,000 poses against the same queries in adb-tradeoff's C++ loop: the
+   tool's per-query CSV gives the poses and each query's time (a warm run of the query, then
+   one timed run, --repeats 1); Python answers the same poses in one call. Three rounds, the
+   fastest of each kept; also the queries' own time inside the call, which separates what
+   the binding adds from the tool's warm repeat and the machine's noise.
+2. A scene stepped by adb.World against adb-demo's steps on the same scene under a node-pair
+   budget (the same work in both): Python's wall clock around world.step(n) per step against
+   the mean of adb-demo's own step times (steps.csv `seconds`), best of 5 alternating runs
+   each; Python's own step times too, which separate the loop's cost from run-to-run noise.
+
+    PYTHONPATH=build/python /usr/bin/python3 benchmarks/python/python_overhead.py [--bin build/bin]
+"""
+import argparse
+import csv
+import pathlib
+import subprocess
+import tempfile
+import time
+
+import numpy as np
+
+import adb
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("--bin", default="build/bin", help="where adb-tradeoff and adb-demo are")
+parser.add_argument("--model", default="knot:5000")
+parser.add_argument("--rotations", type=int, default=600, help="per distance (17 distances)")
+parser.add_argument("--scene", default=str(pathlib.Path(__file__).parents[2] / "demos" /
+                                          "scenes" / "pile.json"))
+parser.add_argument("--steps", type=int, default=200)
+parser.add_argument("--budget-pairs", type=int, default=20000)
+args = parser.parse_args()
+tool_dir = pathlib.Path(args.bin)
+
+
+def quaternion_matrices(q):
+    q = q / np.linalg.norm(q, axis=1, keepdims=True)
+    w, x, y, z = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)], 1)
+
+
+def poses(rows, side):
+    out = np.tile(np.eye(4), (len(rows), 1, 1))
+    q = np.array([[float(r[f"{side}_q{c}"]) for c in "wxyz"] for r in rows])
+    out[:, :3, :3] = quaternion_matrices(q)
+    out[:, :3, 3] = [[float(r[f"{side}_t{c}"]) for c in "xyz"] for r in rows]
+    return out
+
+
+def best_of(n, run):
+    best = float("inf")
+    for _ in range(n):
+        start = time.perf_counter()
+        run()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    tmp = pathlib.Path(tmp)
+    # 1. Batched queries: three rounds, each the tool then Python, the fastest of each kept.
+    name, triangles = args.model.split(":")
+    tree = adb.Tree(adb.model(name, int(triangles)))
+    methods = (("exact", {"mode": "exact"}), ("adb", {"p_min": 0.99, "k_min": 10}))
+    cpp, wall, inner, same = {}, {}, {}, {}
+    for round_ in range(3):
+        print(f"round {round_ + 1}: adb-tradeoff {args.model}, 17 distances x "
+              f"{args.rotations} rotations, then Python", flush=True)
+        subprocess.run([str(tool_dir / "adb-tradeoff"), "--model", args.model, "--distances",
+                        "0.4:2.0:0.1", "--rotations", str(args.rotations), "--methods",
+                        "exact,adb", "--p-min", "0.99", "--k-min", "10", "--budget-us", "none",
+                        "--repeats", "1", "--no-plots", "--out", str(tmp / "tradeoff")],
+                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        rows = list(csv.DictReader(open(tmp / "tradeoff" / "queries.csv")))
+        for method, settings in methods:
+            chosen = [r for r in rows if r["method"] == method and r["budget_us"] == ""]
+            pa, pb = poses(chosen, "a"), poses(chosen, "b")
+            cpp[method] = min(cpp.get(method, 1e9),
+                              sum(float(r["time_ns"]) for r in chosen) * 1e-9)
+            start = time.perf_counter()
+            answers = adb.collide_many(tree, pa, tree, pb, **settings)
+            wall[method] = min(wall.get(method, 1e9), time.perf_counter() - start)
+            inner[method] = min(inner.get(method, 1e9), answers["seconds"].sum())
+            same[method] = np.array_equal(answers["collides"],
+                                          [r["collides"] == "1" for r in chosen])
+    for method, _ in methods:
+        print(f"collide_many, {method:>5}, {len(chosen)} poses: Python {wall[method] * 1e3:.1f} "
+              f"ms, the C++ loop {cpp[method] * 1e3:.1f} ms: {wall[method] / cpp[method]:.3f}x "
+              f"(target <= 1.2x); the queries' own time in the call {inner[method] * 1e3:.1f} "
+              f"ms: the binding adds {100 * (wall[method] / inner[method] - 1):.1f} %; same "
+              f"answers: {same[method]}")
+
+    # 2. Scene steps.
+    scene = adb.Scene.load(args.scene)
+    scene.steps = args.steps
+    scene.budget_pairs = args.budget_pairs
+    demo_means, python_steps, python_own = [], [], []
+    for run in range(5):
+        out = tmp / f"demo{run}"
+        subprocess.run([str(tool_dir / "adb-demo"), "--scene", args.scene, "--steps",
+                        str(args.steps), "--budget-pairs", str(args.budget_pairs), "--out",
+                        str(out)], check=True, stdout=subprocess.DEVNULL)
+        demo_means.append(np.mean([float(r["seconds"]) for r in
+                                   csv.DictReader(open(out / "steps.csv"))]))
+        world = adb.World(scene)
+        start = time.perf_counter()
+        world.step(args.steps)
+        python_steps.append((time.perf_counter() - start) / args.steps)
+        python_own.append(world.stats()["seconds"].mean())
+    demo, python, own = min(demo_means), min(python_steps), min(python_own)
+    print(f"scene step, {pathlib.Path(args.scene).name}, {args.steps} steps at "
+          f"{args.budget_pairs} node pairs: Python {python * 1e3:.3f} ms (wall clock of "
+          f"world.step), adb-demo {demo * 1e3:.3f} ms (its steps' own time): "
+          f"{python / demo:.3f}x (target <= 1.05x); Python's steps' own time {own * 1e3:.3f} "
+          f"ms: the loop adds {100 * (python / own - 1):.1f} %")
