@@ -28,7 +28,7 @@ echo "mismatch refused at compile time"
 
 # The double-precision build of the plugin and its tests.
 cmake -S "$source" -B "$work/double" -DCMAKE_BUILD_TYPE=Release -DADB_BULLET_DOUBLE=ON \
-  -DADB_BUILD_DEMOS=OFF > "$work/configure.log"
+  -DADB_BUILD_DEMOS=OFF -DADB_BUILD_PYTHON=OFF > "$work/configure.log"
 cmake --build "$work/double" --target adb_bullet_tests -j "$(nproc)" > "$work/build.log" 2>&1 ||
   { tail -50 "$work/build.log"; exit 1; }
 "$work/double/bin/adb_bullet_tests" --gtest_brief=1
