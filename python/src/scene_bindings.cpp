@@ -199,6 +199,8 @@ class World {
       for (const scene::StepCell& cell : scene::stepCells(m_world->last())) {
         m_rows.push_back(cell.value);
       }
+      const auto& events = m_world->events();
+      m_events.insert(m_events.end(), events.begin(), events.end());
       py::gil_scoped_acquire acquire;
       if (PyErr_CheckSignals() != 0) {
         m_recorder->flush();
@@ -260,6 +262,24 @@ class World {
     return d;
   }
 
+  py::dict events() const {
+    const auto n = static_cast<py::ssize_t>(m_events.size());
+    py::array_t<std::int64_t> step = newArray<std::int64_t>({n});
+    py::array_t<double> time = newArray<double>({n});
+    py::array_t<bool> begin = newArray<bool>({n});
+    py::dict d = pairArrays(m_events);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const scene::OverlapEvent& e = m_events[static_cast<std::size_t>(i)];
+      step.mutable_at(i) = e.step;
+      time.mutable_at(i) = e.time;
+      begin.mutable_at(i) = e.begin;
+    }
+    d["step"] = step;
+    d["time"] = time;
+    d["begin"] = begin;
+    return d;
+  }
+
   template <class Pair>
   static py::dict pairArrays(const std::vector<Pair>& pairs) {
     const auto n = static_cast<py::ssize_t>(pairs.size());
@@ -316,6 +336,7 @@ class World {
   std::unique_ptr<scene::SceneWorld> m_world;
   std::unique_ptr<scene::Recorder> m_recorder;
   std::vector<double> m_rows;  // kStepColumns values per step
+  std::vector<scene::OverlapEvent> m_events;  // every step's, in order
 };
 
 void bindWorld(py::module_& m) {
@@ -349,6 +370,10 @@ void bindWorld(py::module_& m) {
       .def("overlapping",
            [](const World& w) { return World::pairArrays(w.world().overlapping()); },
            "Overlap scenes: the pairs overlapping after the last step.")
+      .def("events", &World::events,
+           "Overlap scenes: every begin and end event so far, as arrays: 'step', 'time', "
+           "'begin' (False: the pair stopped overlapping), 'bodies' (N, 2) and 'confidence' "
+           "(that the pair's answer that step is right).")
       .def("render", &World::render, py::arg("path"), py::kw_only(), py::arg("width") = 640,
            py::arg("height") = 480,
            "Draws the world as it is now to a PNG: bodies shaded, contact points and cut pairs "

@@ -86,6 +86,25 @@ def test_the_same_scene_as_adb_demo_gives_the_same_simulation(tmp_path):
             {k: v for k, v in p.items() if k not in timing}
 
 
+def test_an_overlap_scene_reports_its_events(tmp_path):
+    """The gallery's assembly path: the ring's overlap events, every step's, as adb-demo
+    writes them to events.jsonl."""
+    import json
+
+    scene = adb.Scene.load(SOURCE / "demos" / "scenes" / "assembly_path.json")
+    world = adb.World(scene, out=tmp_path)
+    world.step(scene.steps)
+    events = world.events()
+    written = [json.loads(line) for line in open(tmp_path / "events.jsonl")]
+    assert len(events["step"]) == len(written) > 0
+    assert list(events["step"]) == [e["step"] for e in written]
+    assert list(events["begin"]) == [e["event"] == "begin" for e in written]
+    assert ((events["confidence"] >= 0) & (events["confidence"] <= 1)).all()
+    assert world.built.startswith("btCollisionWorld")
+    for b0, b1 in world.overlapping()["bodies"]:
+        assert b0 < b1
+
+
 def test_render_writes_a_png(tmp_path):
     world = adb.World(small_scene())
     world.step(5)
