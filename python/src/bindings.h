@@ -12,5 +12,6 @@ void bindErrors(py::module_& m);
 void bindMeshes(py::module_& m);
 void bindQueries(py::module_& m);
 void bindScenes(py::module_& m);
+void bindWorlds(py::module_& m);
 
 }  // namespace adb::python

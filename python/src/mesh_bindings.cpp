@@ -13,6 +13,7 @@
 #include "adb/support/mesh_generators.h"
 #include "arrays.h"
 #include "bindings.h"
+#include "settings.h"
 
 namespace adb::python {
 namespace {
@@ -110,10 +111,7 @@ void bindMesh(py::module_& m) {
   m.def(
       "model",
       [](const std::string& name, long long triangles) {
-        if (triangles < 12 || triangles > 10000000) {
-          throw SettingsError("triangles: " + std::to_string(triangles) +
-                              ", expected 12 to 10,000,000");
-        }
+        requireRange(static_cast<double>(triangles), 12, 1e7, "triangles");
         py::gil_scoped_release release;
         return std::make_shared<TriangleMesh>(
             gen::makeModel(name, static_cast<std::size_t>(triangles)));
@@ -132,16 +130,10 @@ void bindTree(py::module_& m) {
                        long long maxLeafTriangles, const std::string& counting,
                        double areaThreshold) {
              BuildSettings s;
-             auto inRange = [](long long v, long long lo, long long hi, const char* name) {
-               if (v < lo || v > hi) {
-                 throw SettingsError(std::string(name) + ": " + std::to_string(v) +
-                                     ", expected " + std::to_string(lo) + " to " +
-                                     std::to_string(hi));
-               }
-               return static_cast<int>(v);
-             };
-             s.gridResolution = inRange(gridResolution, 1, 32, "grid_resolution");
-             s.maxLeafTriangles = inRange(maxLeafTriangles, 1, 15, "max_leaf_triangles");
+             requireRange(static_cast<double>(gridResolution), 1, 32, "grid_resolution");
+             requireRange(static_cast<double>(maxLeafTriangles), 1, 15, "max_leaf_triangles");
+             s.gridResolution = static_cast<int>(gridResolution);
+             s.maxLeafTriangles = static_cast<int>(maxLeafTriangles);
              s.counting = countingFrom(counting);
              s.areaThreshold = areaThreshold;
              py::gil_scoped_release release;

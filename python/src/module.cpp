@@ -11,4 +11,5 @@ PYBIND11_MODULE(_adb, m) {
   adb::python::bindMeshes(m);
   adb::python::bindQueries(m);
   adb::python::bindScenes(m);
+  adb::python::bindWorlds(m);
 }

@@ -16,7 +16,7 @@
 #include "adb/core/triangle_contact.h"
 #include "arrays.h"
 #include "bindings.h"
-#include "query_options.h"
+#include "settings.h"
 
 namespace adb::python {
 namespace {

@@ -1,5 +1,6 @@
-// The keyword arguments of adb.collide, adb.collide_many and adb.CollisionManager as the
-// core's QuerySettings: one reading for all three.
+// Keyword arguments as the layers' settings, checked in one place: the query keywords of
+// adb.collide, adb.collide_many and adb.CollisionManager as the core's QuerySettings, and the
+// range check every other setting (tree, scene, world) goes through.
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -26,6 +27,9 @@ struct QueryOptions {
 
 /// The settings, validated: SettingsError names the first bad keyword and its range.
 QuerySettings querySettings(const QueryOptions& options);
+
+/// Throws SettingsError "name: value, expected lo to hi" unless lo <= value <= hi (NaN fails).
+void requireRange(double value, double lo, double hi, const char* name);
 
 /// The keyword arguments, with their defaults, in the order the functions take them.
 #define ADB_QUERY_KWARGS                                                                    \

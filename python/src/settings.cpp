@@ -1,11 +1,26 @@
-#include "query_options.h"
+#include "settings.h"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 
 #include "adb/core/errors.h"
 
 namespace adb::python {
+
+void requireRange(double value, double lo, double hi, const char* name) {
+  if (!(value >= lo && value <= hi)) {
+    auto text = [](double x) {
+      // Whole numbers without a fraction: "steps: 0, expected 1 to 100000000".
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, x == std::floor(x) && std::abs(x) < 1e15 ? "%.0f" : "%g", x);
+      return std::string(buffer);
+    };
+    throw SettingsError(std::string(name) + ": " + text(value) + ", expected " + text(lo) +
+                        " to " + text(hi));
+  }
+}
 
 QuerySettings querySettings(const QueryOptions& o) {
   QuerySettings s;
