@@ -51,6 +51,8 @@ __all__ = [
 ]
 
 _IDENTITY = np.eye(4)
+# A one-triangle tree, for checking a CollisionManager's settings when it is made.
+_POINT_TREE = Tree(Mesh(np.eye(3), np.array([[0, 1, 2]]), "settings check"))
 
 MeshLike = Union[Mesh, Tree, Any]
 
@@ -123,6 +125,8 @@ class CollisionManager:
         if unknown:
             raise SettingsError(f"unknown setting(s) {sorted(unknown)}; known: "
                                 f"{sorted(collide_keys)}")
+        # The settings checked now, not at the first query: an empty batch runs no query.
+        collide_many(_POINT_TREE, _IDENTITY, _POINT_TREE, np.zeros((0, 4, 4)), **settings)
         self._objects: Dict[str, Tuple[Tree, np.ndarray]] = {}
         #: The probability that the last call's answer is right.
         self.last_confidence: float = 1.0

@@ -105,6 +105,28 @@ Doubles poseDoubles(const py::handle& value, const std::string& what, bool batch
   return Doubles::ensure(a);
 }
 
+// Indices read as 64 bits of their own signedness, so that a negative or too large one is
+// named as it is, not wrapped.
+template <class Index>
+std::vector<Triangle> trianglesFrom(const py::array& t, std::size_t vertices,
+                                    const std::string& name) {
+  using Indices = py::array_t<Index, py::array::c_style | py::array::forcecast>;
+  const Indices td = Indices::ensure(t);
+  std::vector<Triangle> faces(static_cast<std::size_t>(t.shape(0)));
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const Index index = td.data()[3 * i + c];
+      if (index < 0 || static_cast<unsigned long long>(index) >= vertices) {
+        throw MeshError(name + ": triangle " + std::to_string(i) + " references vertex " +
+                        std::to_string(index) + ", but the mesh has " +
+                        std::to_string(vertices) + " vertices");
+      }
+      faces[i][c] = static_cast<std::uint32_t>(index);
+    }
+  }
+  return faces;
+}
+
 }  // namespace
 
 Pose poseFrom(const py::handle& value, const std::string& what) {
@@ -112,18 +134,16 @@ Pose poseFrom(const py::handle& value, const std::string& what) {
   return poseAt(a.data(), a.shape(0), what);
 }
 
-std::size_t poseCount(const py::handle& value, const std::string& what) {
+std::optional<std::size_t> batchSize(const py::handle& value, const std::string& what) {
   const Doubles a = poseDoubles(value, what, true);
-  return a.ndim() == 3 ? static_cast<std::size_t>(a.shape(0)) : 0;
+  if (a.ndim() == 2) return std::nullopt;
+  return static_cast<std::size_t>(a.shape(0));
 }
 
 std::vector<Pose> posesFrom(const py::handle& value, const std::string& what,
-                            std::size_t broadcastTo) {
+                            std::size_t count) {
   const Doubles a = poseDoubles(value, what, true);
-  if (a.ndim() == 2) {
-    return std::vector<Pose>(std::max<std::size_t>(broadcastTo, 1),
-                             poseAt(a.data(), a.shape(0), what));
-  }
+  if (a.ndim() == 2) return std::vector<Pose>(count, poseAt(a.data(), a.shape(0), what));
   const py::ssize_t rows = a.shape(1);
   std::vector<Pose> poses(static_cast<std::size_t>(a.shape(0)));
   for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -154,21 +174,9 @@ TriangleMesh meshFrom(const py::handle& vertices, const py::handle& triangles,
   for (std::size_t i = 0; i < points.size(); ++i) {
     points[i] = Vec3(vd.data()[3 * i], vd.data()[3 * i + 1], vd.data()[3 * i + 2]);
   }
-  // Indices read as 64-bit so that a negative or too large one is named, not wrapped.
-  using Indices = py::array_t<long long, py::array::c_style | py::array::forcecast>;
-  const Indices td = Indices::ensure(t);
-  std::vector<Triangle> faces(static_cast<std::size_t>(t.shape(0)));
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const long long index = td.data()[3 * i + c];
-      if (index < 0 || index >= static_cast<long long>(points.size())) {
-        throw MeshError(name + ": triangle " + std::to_string(i) + " references vertex " +
-                        std::to_string(index) + ", but the mesh has " +
-                        std::to_string(points.size()) + " vertices");
-      }
-      faces[i][c] = static_cast<std::uint32_t>(index);
-    }
-  }
+  std::vector<Triangle> faces = t.dtype().kind() == 'u'
+                                    ? trianglesFrom<unsigned long long>(t, points.size(), name)
+                                    : trianglesFrom<long long>(t, points.size(), name);
   return TriangleMesh(std::move(points), std::move(faces), name);
 }
 

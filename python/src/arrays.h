@@ -6,6 +6,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,12 @@ namespace py = pybind11;
 /// numbers, rigid (PoseDefect::None). `what` names the argument in errors.
 Pose poseFrom(const py::handle& value, const std::string& what);
 
-/// K poses: a (K, 4, 4) or (K, 3, 4) array; a single pose stands for K copies when
-/// `broadcastTo` > 0. Errors name the index: "poses_a[17]: ...".
+/// K poses: a (K, 4, 4) or (K, 3, 4) array (K may be 0), or a single pose standing for
+/// `count` copies. Errors name the index: "poses_a[17]: ...".
 std::vector<Pose> posesFrom(const py::handle& value, const std::string& what,
-                            std::size_t broadcastTo = 0);
-/// How many poses `value` holds: K for a (K, r, 4) array, 0 for a single pose.
-std::size_t poseCount(const py::handle& value, const std::string& what);
+                            std::size_t count);
+/// How many poses `value` holds: K for a (K, r, 4) array; none for a single pose.
+std::optional<std::size_t> batchSize(const py::handle& value, const std::string& what);
 
 /// A mesh from a (N, 3) array of real vertices and a (M, 3) array of integer indices.
 TriangleMesh meshFrom(const py::handle& vertices, const py::handle& triangles,

@@ -261,7 +261,8 @@ void bindQueries(py::module_& m) {
                            options(mode, pMin, kMin, budgetUs, budgetPairs, stopAtFirstHit,
                                    maxWitnesses, contactMargin));
       },
-      py::arg("tree_a"), py::arg("pose_a"), py::arg("tree_b"), py::arg("pose_b"),
+      py::arg("tree_a").none(false), py::arg("pose_a"), py::arg("tree_b").none(false),
+      py::arg("pose_b"),
       ADB_QUERY_KWARGS,
       "Tests tree_a at pose_a against tree_b at pose_b (poses: 4x4 or 3x4 rigid transforms "
       "from each mesh's coordinates to the world).\n\n"
@@ -284,13 +285,13 @@ void bindQueries(py::module_& m) {
           throw SettingsError("threads: " + std::to_string(threads) +
                               ", expected 0 (all hardware threads) or a count from 1 to 4096");
         }
-        const std::size_t ka = poseCount(posesA, "poses_a");
-        const std::size_t kb = poseCount(posesB, "poses_b");
-        if (ka > 0 && kb > 0 && ka != kb) {
-          throw PoseError("poses_a holds " + std::to_string(ka) + " poses and poses_b " +
-                          std::to_string(kb) + "; expected the same count (or one pose)");
+        const std::optional<std::size_t> ka = batchSize(posesA, "poses_a");
+        const std::optional<std::size_t> kb = batchSize(posesB, "poses_b");
+        if (ka && kb && *ka != *kb) {
+          throw PoseError("poses_a holds " + std::to_string(*ka) + " poses and poses_b " +
+                          std::to_string(*kb) + "; expected the same count (or one pose)");
         }
-        const std::size_t k = std::max<std::size_t>({ka, kb, 1});
+        const std::size_t k = ka ? *ka : kb ? *kb : 1;  // one pose on both sides: one query
         const std::vector<Pose> pa = posesFrom(posesA, "poses_a", k);
         const std::vector<Pose> pb = posesFrom(posesB, "poses_b", k);
         Batch batch;
@@ -300,7 +301,8 @@ void bindQueries(py::module_& m) {
         }
         return batchArrays(batch);
       },
-      py::arg("tree_a"), py::arg("poses_a"), py::arg("tree_b"), py::arg("poses_b"),
+      py::arg("tree_a").none(false), py::arg("poses_a"), py::arg("tree_b").none(false),
+      py::arg("poses_b"),
       ADB_QUERY_KWARGS, py::arg("threads") = 1,
       "collide() over K pose pairs: poses_a and poses_b are (K, 4, 4) or (K, 3, 4) arrays, or "
       "one pose for all K. Runs without the GIL on `threads` threads (0: all hardware "

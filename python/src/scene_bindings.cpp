@@ -57,8 +57,17 @@ void bindScene(py::module_& m) {
           "from_dict",
           [](const py::dict& d, const std::filesystem::path& folder,
              const std::map<std::string, std::shared_ptr<TriangleMesh>>& meshes) {
-            const std::string text =
-                py::module_::import("json").attr("dumps")(d).cast<std::string>();
+            // numpy arrays and scalars (positions, quaternions) are written as their lists.
+            const py::cpp_function asList([](const py::handle& value) -> py::object {
+              if (py::hasattr(value, "tolist")) return value.attr("tolist")();
+              throw scene::SceneError(
+                  "<dict>", "",
+                  "a " + py::str(py::type::of(value).attr("__name__")).cast<std::string>() +
+                      " is not a value a scene holds (numbers, strings, lists, dicts)");
+            });
+            const std::string text = py::module_::import("json")
+                                         .attr("dumps")(d, py::arg("default") = asList)
+                                         .cast<std::string>();
             return scene::parseScene(text, "<dict>", folder, givenMeshes(meshes));
           },
           py::arg("scene"), py::kw_only(), py::arg("folder") = std::filesystem::path("."),

@@ -88,6 +88,8 @@ def test_errors(parts):
         manager.add_object("part", parts["torus"], np.diag([2.0, 1, 1, 1]))
     with pytest.raises(adb.SettingsError, match="unknown setting"):
         adb.CollisionManager(pmin=0.5)
+    with pytest.raises(adb.SettingsError, match="p_min"):
+        adb.CollisionManager(p_min=7)  # named when made, not at the first query
     manager.add_object("x", parts["torus"])
     manager.remove_object("x")
     assert manager.names == []

@@ -215,6 +215,25 @@ def test_bad_batches_are_named_by_index(torus):
         adb.collide_many(torus, I4, torus, I4, threads=-1)
 
 
+def test_batches_broadcast_a_single_pose_on_either_side(torus):
+    empty = adb.collide_many(torus, I4, torus, np.zeros((0, 4, 4)))
+    assert all(len(v) == 0 for v in empty.values())
+    assert len(adb.collide_many(torus, np.zeros((0, 3, 4)), torus, I4)["collides"]) == 0
+    one = adb.collide_many(torus, I4, torus, translation(5))
+    assert list(one["collides"]) == [False]
+    moved = np.tile(translation(5), (3, 1, 1))
+    assert list(adb.collide_many(torus, moved, torus, I4, mode="exact")["collides"]) == \
+        [False] * 3
+
+
+def test_no_tree_is_a_type_error_not_a_crash(torus):
+    # pybind11 would pass None as an empty shared pointer: the trees are declared not-None.
+    with pytest.raises(TypeError):
+        adb.collide(None, I4, torus, I4)
+    with pytest.raises(TypeError):
+        adb.collide_many(torus, I4, None, I4)
+
+
 def test_check_pose_returns_the_checked_matrix():
     np.testing.assert_array_equal(adb.check_pose(translation(1, 2, 3)[:3]), translation(1, 2, 3))
     with pytest.raises(adb.PoseError, match="gripper: has a rotation that is not orthonormal"):

@@ -136,6 +136,17 @@ def test_the_pile_made_in_code():
         adb.Scene.pile(floor="sand")
 
 
+def test_a_dict_may_hold_numpy_values():
+    scene = dict(SMALL_SCENE, bodies=[dict(b) for b in SMALL_SCENE["bodies"]])
+    scene["bodies"][1]["position"] = np.array([0.0, 0.7, 0.0])
+    scene["bodies"][1]["mass"] = np.float32(2.0)
+    assert adb.Scene.from_dict(scene, meshes={"part": adb.model("torus", 800)}).body_names == \
+        ["floor", "a", "b"]
+    scene["bodies"][1]["mass"] = object()
+    with pytest.raises(adb.SceneError, match="a object is not a value a scene holds"):
+        adb.Scene.from_dict(scene, meshes={"part": adb.model("torus", 800)})
+
+
 def test_bad_scenes_are_named(tmp_path):
     bad = dict(SMALL_SCENE, bodies=[{"name": "a", "shape": "nothing"}])
     with pytest.raises(adb.SceneError, match=r"bodies\[0\]\.shape"):
