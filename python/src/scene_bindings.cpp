@@ -21,7 +21,10 @@ using scene::Scene;
 
 scene::GivenMeshes givenMeshes(const std::map<std::string, std::shared_ptr<TriangleMesh>>& m) {
   scene::GivenMeshes out;
-  for (const auto& [name, mesh] : m) out[name] = mesh;
+  for (const auto& [name, mesh] : m) {
+    if (!mesh) throw MeshError("meshes['" + name + "']: None, expected an adb.Mesh");
+    out[name] = mesh;
+  }
   return out;
 }
 

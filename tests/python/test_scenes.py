@@ -153,6 +153,8 @@ def test_bad_scenes_are_named(tmp_path):
         adb.Scene.from_dict(bad, meshes={"part": adb.model("torus", 800)})
     with pytest.raises(adb.SceneError, match="shapes.part"):
         adb.Scene.from_dict(SMALL_SCENE)  # no file and no mesh given
+    with pytest.raises(adb.MeshError, match=r"meshes\['part'\]: None"):
+        adb.Scene.from_dict(SMALL_SCENE, meshes={"part": None})
     with pytest.raises(adb.SceneError, match="line 1"):
         adb.Scene.from_json("{ nope")
     (tmp_path / "s.json").write_text('{"shapes": {}}')
