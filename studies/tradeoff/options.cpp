@@ -320,6 +320,10 @@ void addRunFlags(CLI::App& app, Options& o) {
   app.add_flag_callback("--no-plots", [&o] { o.plots = false; },
                         "do not run studies/tradeoff/plot_tradeoff.py")
       ->disable_flag_override();
+  app.add_flag_callback("--no-warmup", [&o] { o.warmup = false; },
+                        "time each query cold: no untimed run before the timed ones (what a "
+                        "batch of different poses meets; benchmarks/python compares with it)")
+      ->disable_flag_override();
 }
 
 const char* const kAbout =
@@ -330,7 +334,8 @@ const char* const kAbout =
 
 const char* const kPolicy =
     "Timing: every method's data structures are built once per model, untimed. Each query\n"
-    "runs once untimed (warm caches, as for a pair queried frame after frame), then --repeats\n"
+    "runs once untimed (warm caches, as for a pair queried frame after frame; not with\n"
+    "--no-warmup), then --repeats\n"
     "times, each timed with std::chrono::steady_clock around the call; the fastest run is\n"
     "the query's time (the machine is shared: interference only adds time) and its answer is\n"
     "recorded. Methods are interleaved pose by pose, so a burst of noise hits all alike.\n"

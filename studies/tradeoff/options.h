@@ -41,6 +41,9 @@ struct Options {
   std::string outDir = "tradeoff-results";
   bool plots = true;
   int repeats = 3;                 ///< timed runs per query (after one untimed warm-up)
+  /// One untimed run of each query before its timed ones (--no-warmup: none, so that each
+  /// query is timed cold, as a batch of different poses meets it).
+  bool warmup = true;
   bool help = false;
   std::string commandLine;         ///< as given, for the summary
 };

@@ -24,7 +24,9 @@ RunNotes notes(const Options& o, const std::vector<ModelResult>& done) {
   n.lines.push_back("Poses: " + std::to_string(o.distances.size()) + " distances x " +
                     std::to_string(o.rotations) + " rotations per model, seed " +
                     std::to_string(o.seed) + "; the same poses for every method.  ");
-  n.lines.push_back("Timing: per query, one untimed warm-up run, then the fastest of " +
+  n.lines.push_back(std::string("Timing: per query, ") +
+                    (o.warmup ? "one untimed warm-up run, then " : "no warm-up run, ") +
+                    "the fastest of " +
                     std::to_string(o.repeats) +
                     " timed runs (steady_clock around the call); mean and p95 over all "
                     "queries of the row. Data structures built once per model, untimed. "

@@ -72,7 +72,8 @@ ModelResult runModel(const Model& model, StudyContext& context) {
       result.rootsOverlap.push_back(rootBoxesOverlap(model.mesh.bounds(), pose.a.pose, pose.b.pose));
       for (std::size_t m = 0; m < context.methods.size(); ++m) {
         Method& method = *context.methods[m];
-        const QueryRecord record = toRecord(timeQuery(method, pose.a.pose, pose.b.pose, o.repeats));
+        const QueryRecord record =
+            toRecord(timeQuery(method, pose.a.pose, pose.b.pose, o.repeats, o.warmup));
         result.methods[m].queries.push_back(record);
         context.csv.write(result.label, result.triangles, method.name(), method.params(), distance,
                           r, pose, record);

@@ -1,13 +1,13 @@
-// timeQuery: warm-up, then the fastest of `repeats` timed runs (see timing.h).
+// timeQuery: a warm-up (unless off), then the fastest of `repeats` timed runs (timing.h).
 #include "timing.h"
 
 #include <chrono>
 
 namespace adb::tradeoff {
 
-TimedAnswer timeQuery(Method& method, const Pose& a, const Pose& b, int repeats) {
+TimedAnswer timeQuery(Method& method, const Pose& a, const Pose& b, int repeats, bool warmup) {
   using Clock = std::chrono::steady_clock;
-  method.query(a, b);  // warm-up, untimed
+  if (warmup) method.query(a, b);  // untimed
   TimedAnswer best;
   for (int i = 0; i < repeats; ++i) {
     const auto start = Clock::now();
