@@ -67,6 +67,45 @@ TEST(Threads, WithoutABudgetTheSimulationIsTheSameAtAnyThreadCount) {
   expectSameTrajectory(one, runPile(FrameSettings{}, 0));  // all hardware threads
 }
 
+// Without a budget the pairs of a mesh with a plane, a box, a sphere or a capsule gather their
+// contacts on the pool (closed form; only their writing stays on the stepping thread): the
+// same simulation at 1 and 2 threads. With no mesh-mesh pair in the world, the pool's time
+// says that the gathering ran there.
+TEST(Threads, PairsWithPrimitivesGatherOnThePoolWithTheSameSimulation) {
+  const auto run = [](int threads) {
+    FrameSettings f;
+    f.threads = threads;
+    World w(test::Dispatch::Adb, f);
+    w.adbDispatcher->setFrameSettings(f);
+    w.add(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0), 0, btVector3(0, 0, 0));
+    w.add(std::make_unique<btBoxShape>(btVector3(0.5, 2, 5)), 0, btVector3(-2.5, 0, 0));
+    const auto torus = MeshData::build(test::flatTorus(0.4, 0.15));
+    for (int i = 0; i < 4; ++i) {  // 1.3 apart: no two tori touch; the first leans on the wall
+      w.add(torus, 1, btVector3(btScalar(-1.45 + 1.3 * i), btScalar(0.3 + 0.1 * i), 0))
+          ->setActivationState(DISABLE_DEACTIVATION);
+    }
+    w.add(std::make_unique<btSphereShape>(btScalar(0.25)), 1, btVector3(btScalar(-0.15), 1, 0));
+    w.add(std::make_unique<btCapsuleShape>(btScalar(0.1), btScalar(0.8)), 1,
+          btVector3(btScalar(1.15), 1, btScalar(0.3)));
+    PileRun r;
+    for (int step = 0; step < 90; ++step) {
+      w.step();
+      const FrameStats& s = w.adbDispatcher->lastFrameStats();
+      EXPECT_EQ(s.pairs, 0u) << "no mesh-mesh pair may form in this scene";
+      r.parallelMicros += s.parallelMicros;
+      r.nodePairs += s.nodePairs;
+      r.hashes.push_back(test::hashBodies(w.bodies));
+    }
+    return r;
+  };
+  const PileRun one = run(1);
+  ASSERT_GT(one.nodePairs, 1000u) << "the pairs with the primitives must touch triangles";
+  EXPECT_EQ(one.parallelMicros, 0.0);
+  const PileRun two = run(2);
+  EXPECT_GT(two.parallelMicros, 0.0) << "the pairs' contacts were not gathered on the pool";
+  expectSameTrajectory(one, two);
+}
+
 // A budgeted step's queries run in rounds whose grants are decided before they run: on the
 // pool, and the same grants, contacts and trajectories at any thread count.
 TEST(Threads, UnderANodePairBudgetTheSimulationIsTheSameAtAnyThreadCount) {

@@ -37,6 +37,8 @@ class ContactSelection {
   static constexpr int kWritten = 4;
 
   void add(const CandidateContact& c);
+  /// Empties it for another step (a selection kept by the scheduler is reused).
+  void clear() { m_count = 0; }
   int size() const { return m_count; }
   /// Writes the deepest candidate; then, among those within a quarter of the breaking
   /// threshold of its depth, the ones nearest the points `previous` (the pair's manifold,

@@ -153,6 +153,7 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
     return rx != ry ? rx < ry : x.sequence < y.sequence;
   });
   m_binding = binding(settings);
+  gatherWholes(settings);
   firstPass(settings);
   refine(settings);
   writeContacts(settings);
@@ -465,15 +466,50 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   PairWrappers wrappers(pair);
   btManifoldResult result(&wrappers.body0, &wrappers.body1);
   const Clock::time_point start = Clock::now();
-  const std::uint64_t work =
-      algorithm.collideScheduled(&wrappers.body0, &wrappers.body1, *m_info, &result, m_step);
-  const double micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  std::uint64_t work = 0;
+  double gatheredMicros = 0.0;
+  if (pair.gathered >= 0) {  // gathered on the pool: only the writing is left
+    GatheredContacts& gathered = m_gathered[static_cast<std::size_t>(pair.gathered)];
+    work = gathered.work;
+    gatheredMicros = gathered.micros;
+    algorithm.writeGathered(&wrappers.body0, &wrappers.body1, &result, gathered.selection, work,
+                            m_step);
+  } else {
+    work = algorithm.collideScheduled(&wrappers.body0, &wrappers.body1, *m_info, &result, m_step);
+  }
+  const double micros =
+      gatheredMicros + std::chrono::duration<double, std::micro>(Clock::now() - start).count();
   algorithm.setLastMicros(micros);
   m_costs.measureWhole(work, micros);
   m_stats.nodePairs += work;
   m_stats.otherNodePairs += work;
   pair.written = true;
   return true;
+}
+
+void FrameScheduler::gatherWholes(const FrameSettings& settings) {
+  m_gathering.clear();
+  for (DeferredPair& pair : m_wholes) pair.gathered = -1;
+  // Under any budget a whole pair may not run at all, and on one thread nothing is gained.
+  if (m_pool.threads() == 1 || !unbudgeted(settings)) return;
+  for (DeferredPair& pair : m_wholes) {
+    PairWrappers wrappers(pair);
+    if (!pair.algorithm->gathersOffThread(&wrappers.body0, &wrappers.body1)) continue;
+    pair.algorithm->prepareGather(&wrappers.body0, &wrappers.body1);  // Bullet's state: here
+    pair.gathered = static_cast<std::int32_t>(m_gathering.size());
+    m_gathering.push_back(&pair);
+  }
+  if (m_gathered.size() < m_gathering.size()) m_gathered.resize(m_gathering.size());
+  auto job = [this](std::size_t i) {
+    const DeferredPair& pair = *m_gathering[i];
+    GatheredContacts& out = m_gathered[i];
+    PairWrappers wrappers(pair);
+    const Clock::time_point start = Clock::now();
+    // Through the btManifoldResult runWhole makes, whose closest-point threshold is 0.
+    out.work = pair.algorithm->gather(&wrappers.body0, &wrappers.body1, 0, out.selection);
+    out.micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  };
+  runOnPool(m_gathering.size(), job);
 }
 
 void FrameScheduler::keepSkipped() {

@@ -11,6 +11,7 @@
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/core/query.h"
+#include "contact_selection.h"
 #include "deferred_pair.h"
 #include "frame_cost_model.h"
 #include "worker_pool.h"
@@ -76,6 +77,10 @@ class FrameScheduler {
   void runWholesLeft(const FrameSettings& settings, bool resting);
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
+  /// A step without a budget runs every whole pair: the closed-form ones (a mesh against a
+  /// plane, box, sphere or capsule) gather their contacts on the pool first, and runWhole
+  /// then only writes them, in the pairs' order.
+  void gatherWholes(const FrameSettings& settings);
   void traverse(DeferredPair& pair, const QueryRequest& request, const FrameSettings& settings);
   std::uint64_t account(DeferredPair& pair, const QueryRequest& request);
   /// The first pass's mesh-mesh queries of one group (anchored or not), `waiting` pairs of
@@ -114,6 +119,15 @@ class FrameScheduler {
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   std::vector<std::uint32_t> m_batch; // the pairs of a round: indices into m_pairs
   std::vector<QueryRequest> m_requests;  // and their requests
+  // Contacts of whole pairs gathered on the pool (DeferredPair::gathered indexes them): a
+  // ContactSelection is 8 to 20 KB, so they are kept and reused, not made per step.
+  struct GatheredContacts {
+    ContactSelection selection;
+    std::uint64_t work = 0;
+    double micros = 0.0;
+  };
+  std::vector<GatheredContacts> m_gathered;
+  std::vector<DeferredPair*> m_gathering;  // the pairs of m_gathered, this step
   // A time budget's end for the round's queries, in microseconds since m_start (infinite:
   // none): each query's time cap is what is left of it when the query starts, so that the
   // budget is shared across the threads as wall-clock time.

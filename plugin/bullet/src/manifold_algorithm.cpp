@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "adb/bullet/dispatcher.h"
+#include "contact_selection.h"
 #include "conversions.h"
 #include "frame_scheduler.h"
 #include "speculative_result.h"
@@ -58,6 +59,42 @@ std::uint64_t ManifoldAlgorithm::collideWithReach(const btCollisionObjectWrapper
   result->setPersistentManifold(m_manifold);  // as collideNow would leave it
   detail::SpeculativeResult reach(*result, speculative, contactReach());
   return collideNow(body0, body1, info, &reach);
+}
+
+bool ManifoldAlgorithm::gathersOffThread(const btCollisionObjectWrapper*,
+                                         const btCollisionObjectWrapper*) const {
+  return false;
+}
+
+std::uint64_t ManifoldAlgorithm::gather(const btCollisionObjectWrapper*,
+                                        const btCollisionObjectWrapper*, btScalar,
+                                        detail::ContactSelection& selection) const {
+  selection.clear();
+  return 0;
+}
+
+void ManifoldAlgorithm::writeSelection(detail::ContactSelection& selection,
+                                       btManifoldResult& result) {
+  selection.write(result, !m_swapped, *m_manifold);
+  result.refreshContactPoints();
+}
+
+void ManifoldAlgorithm::writeGathered(const btCollisionObjectWrapper* body0,
+                                      const btCollisionObjectWrapper* body1,
+                                      btManifoldResult* result,
+                                      detail::ContactSelection& selection, std::uint64_t work,
+                                      std::uint64_t step) {
+  // As collideWithReach and collideNow: the result's manifold set, speculative points apart.
+  result->setPersistentManifold(m_manifold);
+  if (btPersistentManifold* speculative = speculativeManifold()) {
+    detail::SpeculativeResult reach(*result, speculative, contactReach());
+    writeSelection(selection, reach);
+  } else {
+    writeSelection(selection, *result);
+  }
+  m_lastWork = work;
+  m_lastRun = step;
+  rememberPoses(body0, body1);
 }
 
 void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,

@@ -25,6 +25,7 @@ class btManifoldResult;
 namespace adb {
 
 namespace detail {
+class ContactSelection;
 class FrameScheduler;
 }
 
@@ -61,6 +62,31 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
     rememberPoses(body0, body1);
     return m_lastWork;
   }
+  /// Steps without a budget gather the contacts of closed-form pairs on the scheduler's
+  /// pool (a mesh against a plane, a box, a sphere or a capsule): whether this pair is one,
+  /// reading only its shapes, its poses and its own state. Such a pair's collideNow is
+  /// manifoldFor, gather and writeSelection, so both routes write the same points.
+  virtual bool gathersOffThread(const btCollisionObjectWrapper* body0,
+                                const btCollisionObjectWrapper* body1) const;
+  /// The stepping thread, before gather(): makes the pair's manifold (its breaking threshold
+  /// is how far contacts reach).
+  void prepareGather(const btCollisionObjectWrapper* body0,
+                     const btCollisionObjectWrapper* body1) {
+    ensureManifold(body0, body1);
+  }
+  /// Any thread, where gathersOffThread(): the pair's candidate contacts into `selection`
+  /// (emptied first), touching nothing of Bullet's; returns the work. `closestPoints` is
+  /// btManifoldResult::m_closestPointDistanceThreshold of the result it will be written
+  /// through.
+  virtual std::uint64_t gather(const btCollisionObjectWrapper* body0,
+                               const btCollisionObjectWrapper* body1, btScalar closestPoints,
+                               detail::ContactSelection& selection) const;
+  /// collideScheduled for a gathered pair, on the stepping thread: writes `selection` as
+  /// collideNow would have (through the speculative manifold where the pair has one) and
+  /// remembers `work`, the step and the poses.
+  void writeGathered(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                     btManifoldResult* result, detail::ContactSelection& selection,
+                     std::uint64_t work, std::uint64_t step);
   /// An upper bound on how far any point of the mesh has moved against the other body
   /// since the last collideScheduled (infinite if it never ran), for the wrappers' world
   /// transforms: a skipped pair's kept contacts stay true while it is small.
@@ -104,6 +130,9 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
                                     const btCollisionObjectWrapper* body1,
                                     btManifoldResult* result);
   detail::FrameScheduler* scheduler() const { return m_scheduler; }
+  /// Writes `selection` into the pair's manifold through `result` and refreshes the
+  /// manifold's points for the bodies' poses: how a gathered pair's collideNow ends.
+  void writeSelection(detail::ContactSelection& selection, btManifoldResult& result);
   /// The pair's manifold, or null before its first dispatch; reading it makes nothing.
   const btPersistentManifold* existingManifold() const { return m_manifold; }
   /// The manifold of this step's speculative contacts, or null when there are none to make.

@@ -183,41 +183,47 @@ std::uint64_t generalConvexContacts(btDispatcher& dispatcher, const btCollisionO
   return visited;
 }
 
-}  // namespace
+// A mesh-convex pair as its contacts are computed: which body is which, how far contacts
+// reach, and the convex shape in the tree's frame.
+struct PairFrame {
+  const btCollisionObjectWrapper* meshWrap;
+  const btCollisionObjectWrapper* convexWrap;
+  const MeshShape* mesh;
+  bool meshIsBody0;
+  double threshold;   // candidates up to this distance
+  double meshMargin;
+  double reach;       // triangles within this of the convex shape
+  bool finite;        // the convex shape's pose in the mesh's frame is finite
+  LocalConvex local;
+};
 
-std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
-                                             const btCollisionObjectWrapper* body1,
-                                             const btDispatcherInfo& info,
-                                             btManifoldResult* result) {
-  btPersistentManifold* manifold = manifoldFor(body0, body1, result);
-  const bool meshIsBody0 = !m_swapped;
-  const btCollisionObjectWrapper* meshWrap = meshIsBody0 ? body0 : body1;
-  const btCollisionObjectWrapper* convexWrap = meshIsBody0 ? body1 : body0;
-  const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
-  const auto* convex = static_cast<const btConvexShape*>(convexWrap->getCollisionShape());
-  const AdbTree& tree = mesh->tree();
-  const btTransform& meshPose = meshWrap->getWorldTransform();
-
+PairFrame pairFrame(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                    bool meshIsBody0, double threshold) {
+  PairFrame f;
+  f.meshIsBody0 = meshIsBody0;
+  f.meshWrap = meshIsBody0 ? body0 : body1;
+  f.convexWrap = meshIsBody0 ? body1 : body0;
+  f.mesh = static_cast<const MeshShape*>(f.meshWrap->getCollisionShape());
+  const auto* convex = static_cast<const btConvexShape*>(f.convexWrap->getCollisionShape());
   // Candidates up to the threshold (and this step's speculative reach), from triangles
   // within that plus the mesh's margin.
-  const double threshold =
-      btMax(breakingThreshold(), result->m_closestPointDistanceThreshold) + speculativeReach();
-  const double meshMargin = mesh->getMargin();
-  const double reach = threshold + meshMargin;
-  const Pose convexInMesh = toPose(meshPose.inverseTimes(convexWrap->getWorldTransform()));
-  if (!convexInMesh.rotation.allFinite() || !convexInMesh.translation.allFinite()) return 0;
-  const LocalConvex local = localConvex(*convex, convexInMesh, tree.origin(), reach);
+  f.threshold = threshold;
+  f.meshMargin = f.mesh->getMargin();
+  f.reach = f.threshold + f.meshMargin;
+  const Pose convexInMesh =
+      toPose(f.meshWrap->getWorldTransform().inverseTimes(f.convexWrap->getWorldTransform()));
+  f.finite = convexInMesh.rotation.allFinite() && convexInMesh.translation.allFinite();
+  if (f.finite) f.local = localConvex(*convex, convexInMesh, f.mesh->tree().origin(), f.reach);
+  return f;
+}
+
+// The closed-form contacts of a sphere, capsule or box against the triangles within reach,
+// offered to `selection`; returns the work (triangles and nodes visited).
+std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& selection) {
+  const AdbTree& tree = f.mesh->tree();
+  const btTransform& meshPose = f.meshWrap->getWorldTransform();
   const auto& vertices = tree.localVertices();
-
-  detail::ContactSelection selection;
-  if (local.kind == LocalConvex::General) {
-    const std::uint64_t work = generalConvexContacts(*m_dispatcher, meshWrap, convexWrap, local,
-                                                     reach, meshIsBody0, info, *result, selection);
-    selection.write(*result, meshIsBody0, *manifold);
-    result->refreshContactPoints();
-    return work;
-  }
-
+  const LocalConvex& local = f.local;
   // Closed-form contacts of one triangle, offered to the selection; returns the deepest.
   std::uint64_t visited = 0;
   const auto contactsOf = [&](std::uint32_t t) {
@@ -229,16 +235,16 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
     PrimitiveContacts found;
     switch (local.kind) {
       case LocalConvex::Sphere:
-        sphereTriangleContacts(local.end0, local.radius, a, b, c, reach, found);
+        sphereTriangleContacts(local.end0, local.radius, a, b, c, f.reach, found);
         break;
       case LocalConvex::Capsule:
-        capsuleTriangleContacts(local.end0, local.end1, local.radius, a, b, c, reach, found);
+        capsuleTriangleContacts(local.end0, local.end1, local.radius, a, b, c, f.reach, found);
         break;
       default:
-        boxTriangleContacts(local.box, a, b, c, reach, found);
+        boxTriangleContacts(local.box, a, b, c, f.reach, found);
         break;
     }
-    addCandidates(found, meshPose, tree.origin(), meshMargin, threshold, meshIsBody0,
+    addCandidates(found, meshPose, tree.origin(), f.meshMargin, f.threshold, f.meshIsBody0,
                   static_cast<int>(tree.meshTriangle(t)), selection);
     double deepest = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < found.count; ++i) deepest = std::max(deepest, -found.points[i].separation);
@@ -247,14 +253,54 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
   if (local.kind == LocalConvex::Box) {
     // A box (a floor, a wall) has hundreds of triangles within reach of a resting body:
     // each region of the tree gives its deepest contacts (forEachDeepestTriangleNear).
-    visited += forEachDeepestTriangleNear(tree, local.box, reach, kContactRegionLevel,
-                                         kDepthSlack * reach, contactsOf);
+    visited += forEachDeepestTriangleNear(tree, local.box, f.reach, kContactRegionLevel,
+                                         kDepthSlack * f.reach, contactsOf);
   } else {
     visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) { contactsOf(t); });
   }
-  selection.write(*result, meshIsBody0, *manifold);
-  result->refreshContactPoints();
   return visited;
+}
+
+}  // namespace
+
+std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
+                                             const btCollisionObjectWrapper* body1,
+                                             const btDispatcherInfo& info,
+                                             btManifoldResult* result) {
+  btPersistentManifold* manifold = manifoldFor(body0, body1, result);
+  const PairFrame f = pairFrame(
+      body0, body1, !m_swapped,
+      btMax(breakingThreshold(), result->m_closestPointDistanceThreshold) + speculativeReach());
+  if (!f.finite) return 0;
+  detail::ContactSelection selection;
+  if (f.local.kind == LocalConvex::General) {
+    const std::uint64_t work =
+        generalConvexContacts(*m_dispatcher, f.meshWrap, f.convexWrap, f.local, f.reach,
+                              f.meshIsBody0, info, *result, selection);
+    selection.write(*result, f.meshIsBody0, *manifold);
+    result->refreshContactPoints();
+    return work;
+  }
+  const std::uint64_t work = closedFormContacts(f, selection);
+  writeSelection(selection, *result);
+  return work;
+}
+
+bool MeshConvexAlgorithm::gathersOffThread(const btCollisionObjectWrapper* body0,
+                                           const btCollisionObjectWrapper* body1) const {
+  const PairFrame f = pairFrame(body0, body1, !m_swapped, breakingThreshold() + speculativeReach());
+  return f.finite && f.local.kind != LocalConvex::General;
+}
+
+std::uint64_t MeshConvexAlgorithm::gather(const btCollisionObjectWrapper* body0,
+                                          const btCollisionObjectWrapper* body1,
+                                          btScalar closestPoints,
+                                          detail::ContactSelection& selection) const {
+  selection.clear();
+  const PairFrame f = pairFrame(
+      body0, body1, !m_swapped,
+      btMax(breakingThreshold(), closestPoints) + speculativeReach());
+  return closedFormContacts(f, selection);
 }
 
 }  // namespace adb

@@ -17,6 +17,13 @@ class MeshConvexAlgorithm : public ManifoldAlgorithm {
   std::uint64_t collideNow(const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                            btManifoldResult* result) override;
+  /// For spheres, capsules and boxes (closed form); GJK/EPA pairs stay on the stepping
+  /// thread (Bullet's detectors, and the dispatcher's).
+  bool gathersOffThread(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1) const override;
+  std::uint64_t gather(const btCollisionObjectWrapper* body0,
+                       const btCollisionObjectWrapper* body1, btScalar closestPoints,
+                       detail::ContactSelection& selection) const override;
 };
 
 }  // namespace adb

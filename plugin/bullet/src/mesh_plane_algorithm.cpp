@@ -16,7 +16,23 @@ namespace adb {
 std::uint64_t MeshPlaneAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
                                             const btCollisionObjectWrapper* body1,
                                             const btDispatcherInfo&, btManifoldResult* result) {
-  btPersistentManifold* manifold = manifoldFor(body0, body1, result);
+  manifoldFor(body0, body1, result);
+  detail::ContactSelection selection;
+  const std::uint64_t visited =
+      gather(body0, body1, result->m_closestPointDistanceThreshold, selection);
+  writeSelection(selection, *result);
+  return visited;
+}
+
+bool MeshPlaneAlgorithm::gathersOffThread(const btCollisionObjectWrapper*,
+                                          const btCollisionObjectWrapper*) const {
+  return true;
+}
+
+std::uint64_t MeshPlaneAlgorithm::gather(const btCollisionObjectWrapper* body0,
+                                        const btCollisionObjectWrapper* body1, btScalar,
+                                        detail::ContactSelection& selection) const {
+  selection.clear();
   const btCollisionObjectWrapper* meshWrap = m_swapped ? body1 : body0;
   const btCollisionObjectWrapper* planeWrap = m_swapped ? body0 : body1;
   const auto* mesh = static_cast<const MeshShape*>(meshWrap->getCollisionShape());
@@ -36,7 +52,6 @@ std::uint64_t MeshPlaneAlgorithm::collideNow(const btCollisionObjectWrapper* bod
   // Bullet's normal on body 1 points towards body 0. Every vertex within reach is a
   // candidate; the selection keeps the deepest and the widest support (contact_selection.h).
   const btVector3 normalOnB = m_swapped ? -nWorld : nWorld;
-  detail::ContactSelection selection;
   std::uint32_t stack[64];  // at most one pending sibling per level of a <= 29-level tree
   int top = 0;
   stack[top++] = 0;
@@ -70,8 +85,6 @@ std::uint64_t MeshPlaneAlgorithm::collideNow(const btCollisionObjectWrapper* bod
       }
     }
   }
-  selection.write(*result, !m_swapped, *manifold);
-  result->refreshContactPoints();
   return visited;
 }
 

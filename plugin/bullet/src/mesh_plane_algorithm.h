@@ -13,6 +13,12 @@ class MeshPlaneAlgorithm : public ManifoldAlgorithm {
   std::uint64_t collideNow(const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, const btDispatcherInfo& info,
                            btManifoldResult* result) override;
+  /// Always: a plane is closed form.
+  bool gathersOffThread(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1) const override;
+  std::uint64_t gather(const btCollisionObjectWrapper* body0,
+                       const btCollisionObjectWrapper* body1, btScalar closestPoints,
+                       detail::ContactSelection& selection) const override;
 };
 
 }  // namespace adb
