@@ -74,11 +74,12 @@ struct FrameSettings {
     Never,               ///< every query descends from the roots
   };
   Fronts fronts = Fronts::WithNodePairBudget;
-  /// Threads for the mesh-mesh pairs' queries: 0 all hardware threads, 1 none (the default),
-  /// N at most N (oneTBB's pool). The queries run in rounds of up to 16 pairs whose grants
-  /// are decided before any of them runs (without a budget, a group of pairs is one round);
-  /// their bookkeeping and every contact written to Bullet happen on the thread that called
-  /// stepSimulation, in pair order. So with or without a node-pair budget the simulation is
+  /// Threads for adb's pair work: 0 all hardware threads, 1 none (the default), N at most N
+  /// (oneTBB's pool). Mesh-mesh queries and their contact points run in rounds of up to 16
+  /// pairs whose grants are decided before any of them runs (without a budget, a group of
+  /// pairs is one round); without a budget the pairs of a mesh with a plane, box, sphere or
+  /// capsule gather their contacts on the pool too. Their bookkeeping and every contact
+  /// written to Bullet happen on the thread that called stepSimulation, in pair order. So with or without a node-pair budget the simulation is
   /// the same bit for bit at any count. A time budget is wall-clock time, shared by the
   /// threads. Bullet's own work stays on the stepping thread.
   int threads = 1;
