@@ -28,20 +28,26 @@ PyObject* newError(py::module_& m, const char* name, const char* doc) {
 }  // namespace
 
 void bindErrors(py::module_& m) {
-  g_meshError = newError(m, "MeshError",
-                         "A bad mesh: an array of the wrong shape or type, a non-finite "
-                         "coordinate, a bad index, no triangles, or a file that cannot be read.");
-  g_sceneError = newError(m, "SceneError",
-                          "A bad scene: the file, where in it (a JSON path or line and "
-                          "column) and what is wrong.");
-  g_settingsError = newError(m, "SettingsError",
-                             "A setting out of range (p_min, k_min, a budget, a backend, ...), "
-                             "named with its range.");
-  g_poseError = newError(m, "PoseError",
-                         "A bad pose: wrong shape or type, a non-finite entry, a last row other "
-                         "than [0, 0, 0, 1], or a rotation that is not orthonormal.");
-  // Tried before pybind11's own translators: adb's types first, then the standard ones the
-  // layers throw for bad values.
+  struct ErrorType {
+    PyObject** type;
+    const char* name;
+    const char* doc;
+  };
+  const ErrorType types[] = {
+      {&g_meshError, "MeshError",
+       "A bad mesh: an array of the wrong shape or type, a non-finite coordinate, a bad index, "
+       "no triangles, or a file that cannot be read."},
+      {&g_sceneError, "SceneError",
+       "A bad scene: the file, where in it (a JSON path or line and column) and what is wrong."},
+      {&g_settingsError, "SettingsError",
+       "A setting out of range (p_min, k_min, a budget, a backend, ...), named with its range."},
+      {&g_poseError, "PoseError",
+       "A bad pose: wrong shape or type, a non-finite entry, a last row other than "
+       "[0, 0, 0, 1], or a rotation that is not orthonormal."},
+  };
+  for (const ErrorType& t : types) *t.type = newError(m, t.name, t.doc);
+  // Tried before pybind11's own translators: adb's error types and the layers' file errors;
+  // anything else goes on to pybind11's (std::invalid_argument as ValueError, ...).
   py::register_exception_translator([](std::exception_ptr error) {
     try {
       if (error) std::rethrow_exception(error);
