@@ -37,21 +37,11 @@ args = parser.parse_args()
 tool_dir = pathlib.Path(args.bin)
 
 
-def quaternion_matrices(q):
-    q = q / np.linalg.norm(q, axis=1, keepdims=True)
-    w, x, y, z = q.T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)], 1)
-
-
 def poses(rows, side):
-    out = np.tile(np.eye(4), (len(rows), 1, 1))
-    q = np.array([[float(r[f"{side}_q{c}"]) for c in "wxyz"] for r in rows])
-    out[:, :3, :3] = quaternion_matrices(q)
-    out[:, :3, 3] = [[float(r[f"{side}_t{c}"]) for c in "xyz"] for r in rows]
-    return out
+    """The CSV's poses, made as the tool made them (Pose::fromQuaternion)."""
+    return adb.poses_from_quaternions(
+        [[float(r[f"{side}_q{c}"]) for c in "wxyz"] for r in rows],
+        [[float(r[f"{side}_t{c}"]) for c in "xyz"] for r in rows])
 
 
 def best_of(n, run):

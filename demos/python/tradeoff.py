@@ -18,30 +18,18 @@ args = parser.parse_args()
 
 mesh = adb.load_mesh(args.mesh) if args.mesh else adb.model("knot", 5000)
 tree = adb.Tree(mesh)
-rng = np.random.default_rng(1)
-unit = np.ptp(mesh.bounds, axis=0).max() / 2  # the benchmark's unit: half the largest edge
-q = rng.normal(size=(args.poses, 4))
-q /= np.linalg.norm(q, axis=1, keepdims=True)
-w, x, y, z = q.T
-poses = np.tile(np.eye(4), (args.poses, 1, 1))
-poses[:, :3, :3] = np.stack([
-    np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-    np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-    np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)], 1)
-centre = mesh.bounds.mean(axis=0)
-distance = rng.uniform(0.4, 2.0, args.poses) * unit  # between the two copies' centres
-poses[:, :3, 3] = centre - poses[:, :3, :3] @ centre  # turned about the box centre...
-poses[:, 0, 3] += distance                            # ...and moved along x
-fixed = np.eye(4)
+# Two copies at random turns, their centres 0.4 to 2 benchmark units apart (docs/benchmark.md).
+distances = np.random.default_rng(1).uniform(0.4, 2.0, args.poses)
+poses_a, poses_b = adb.benchmark_poses(mesh, distances)
 
-exact = adb.collide_many(tree, fixed, tree, poses, mode="exact")
+exact = adb.collide_many(tree, poses_a, tree, poses_b, mode="exact")
 methods = {"exact": {"mode": "exact"}}
 methods.update({f"p_min {p}": {"p_min": p, "k_min": 10} for p in (0.5, 0.9, 0.99)})
 methods.update({f"{b} us": {"budget_us": b} for b in (5, 20, 80)})
 methods.update({f"{n} node pairs": {"budget_pairs": n} for n in (50, 200, 800)})
 fig, ax = plt.subplots(figsize=(7, 4.5))
 for name, settings in methods.items():
-    r = adb.collide_many(tree, fixed, tree, poses, **settings)
+    r = adb.collide_many(tree, poses_a, tree, poses_b, **settings)
     error = 100 * np.mean(r["collides"] != exact["collides"])
     micros = 1e6 * r["seconds"].mean()
     print(f"{name:>16}: {micros:8.1f} us a query, {error:5.2f} % wrong, "

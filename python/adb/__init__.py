@@ -22,12 +22,14 @@ from ._adb import (
     SettingsError,
     Tree,
     World,
+    benchmark_poses,
     check_pose,
     collide,
     collide_many,
     load_mesh,
     model,
     model_names,
+    poses_from_quaternions,
 )
 
 __all__ = [
@@ -42,12 +44,14 @@ __all__ = [
     "SettingsError",
     "Tree",
     "World",
+    "benchmark_poses",
     "check_pose",
     "collide",
     "collide_many",
     "load_mesh",
     "model",
     "model_names",
+    "poses_from_quaternions",
 ]
 
 _IDENTITY = np.eye(4)

@@ -1,7 +1,7 @@
 # Type stubs of adb._adb, the compiled part of the package (python/src); kept by hand beside
 # the bindings, checked by tests/python/test_stubs.py against the module.
 from os import PathLike
-from typing import Dict, List, Mapping, Optional, Sequence, Union
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -69,6 +69,10 @@ def load_mesh(path: PathType, *, isolate: bool = True, max_read_seconds: float =
 def model_names() -> List[str]: ...
 def model(name: str, triangles: int = 2000) -> Mesh: ...
 def check_pose(pose: ArrayLike, name: str = "pose") -> npt.NDArray[np.float64]: ...
+def poses_from_quaternions(quaternions: ArrayLike,
+                           translations: ArrayLike) -> npt.NDArray[np.float64]: ...
+def benchmark_poses(mesh: Mesh, distances: ArrayLike, *,
+                    seed: int = 1) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
 def collide(tree_a: Tree, pose_a: ArrayLike, tree_b: Tree, pose_b: ArrayLike, *,
             mode: str = "adb", p_min: float = 0.99, k_min: int = 10,
             budget_us: Optional[float] = None, budget_pairs: Optional[int] = None,

@@ -180,6 +180,48 @@ TriangleMesh meshFrom(const py::handle& vertices, const py::handle& triangles,
   return TriangleMesh(std::move(points), std::move(faces), name);
 }
 
+std::vector<Pose> posesFromQuaternions(const py::handle& quaternions,
+                                       const py::handle& translations) {
+  const py::array q = checkedArray<PoseError>(quaternions, "quaternions");
+  const py::array t = checkedArray<PoseError>(translations, "translations");
+  if (!isReal(q) || !isReal(t)) {
+    throw PoseError("quaternions, translations: dtypes " + dtypeText(q) + ", " + dtypeText(t) +
+                    "; poses need real numbers");
+  }
+  if (q.ndim() != 2 || q.shape(1) != 4 || t.ndim() != 2 || t.shape(1) != 3 ||
+      q.shape(0) != t.shape(0)) {
+    throw PoseError("quaternions, translations: shapes " + shapeText(q) + ", " + shapeText(t) +
+                    "; expected (K, 4) and (K, 3)");
+  }
+  const Doubles qd = Doubles::ensure(q), td = Doubles::ensure(t);
+  std::vector<Pose> poses(static_cast<std::size_t>(q.shape(0)));
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const double* w = qd.data() + 4 * k;
+    const Eigen::Quaterniond rotation(w[0], w[1], w[2], w[3]);
+    if (!rotation.coeffs().allFinite() || !(rotation.norm() > 0.0)) {
+      throw PoseError("quaternions[" + std::to_string(k) + "]: not a rotation (zero or " +
+                      "non-finite)");
+    }
+    const double* x = td.data() + 3 * k;
+    poses[k] = Pose::fromQuaternion(rotation, Vec3(x[0], x[1], x[2]));
+    const PoseDefect defect = poseDefect(poses[k]);
+    if (defect != PoseDefect::None) {
+      throw PoseError("translations[" + std::to_string(k) + "]: " + describe(defect));
+    }
+  }
+  return poses;
+}
+
+std::vector<double> realsFrom(const py::handle& values, const std::string& what) {
+  const py::array a = checkedArray<SettingsError>(values, what);
+  if (!isReal(a) || a.ndim() != 1) {
+    throw SettingsError(what + ": shape " + shapeText(a) + ", dtype " + dtypeText(a) +
+                        "; expected a 1-d array of real numbers");
+  }
+  const Doubles d = Doubles::ensure(a);
+  return std::vector<double>(d.data(), d.data() + d.size());
+}
+
 namespace {
 
 // The 4x4 matrix of `pose`, row-major, at p[0..15].

@@ -32,6 +32,14 @@ std::optional<std::size_t> batchSize(const py::handle& value, const std::string&
 TriangleMesh meshFrom(const py::handle& vertices, const py::handle& triangles,
                       const std::string& name);
 
+/// Poses from (K, 4) quaternions [w, x, y, z] and (K, 3) translations, as
+/// Pose::fromQuaternion makes them. Raises PoseError naming a wrong shape, dtype or a
+/// non-finite or zero quaternion.
+std::vector<Pose> posesFromQuaternions(const py::handle& quaternions,
+                                       const py::handle& translations);
+/// A 1-d array of real numbers (SettingsError naming `what` otherwise).
+std::vector<double> realsFrom(const py::handle& values, const std::string& what);
+
 /// (4, 4) and (B, 4, 4) arrays of poses.
 py::array_t<double> poseArray(const Pose& pose);
 py::array_t<double> poseArrays(const std::vector<Pose>& poses);

@@ -8,12 +8,14 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "adb/core/errors.h"
 #include "adb/core/query.h"
 #include "adb/core/triangle_contact.h"
+#include "adb/support/benchmark_poses.h"
 #include "arrays.h"
 #include "bindings.h"
 #include "settings.h"
@@ -251,6 +253,33 @@ void bindQueries(py::module_& m) {
       "The pose as a (4, 4) float64 array, after the checks every adb call makes: a (4, 4) "
       "or (3, 4) array of finite real numbers, last row [0, 0, 0, 1], an orthonormal "
       "rotation. Raises PoseError naming `name` and what is wrong.");
+  m.def(
+      "poses_from_quaternions",
+      [](const py::handle& quaternions, const py::handle& translations) {
+        return poseArrays(posesFromQuaternions(quaternions, translations));
+      },
+      py::arg("quaternions"), py::arg("translations"),
+      "(K, 4, 4) poses from (K, 4) quaternions [w, x, y, z] (normalised here) and (K, 3) "
+      "translations, computed as adb's C++ does (adb::Pose::fromQuaternion): the poses of "
+      "adb-tradeoff's per-query CSV become the very poses it queried.");
+  m.def(
+      "benchmark_poses",
+      [](const TriangleMesh& mesh, const py::handle& distances, unsigned long long seed) {
+        const std::vector<double> d = realsFrom(distances, "distances");
+        std::vector<Pose> a(d.size()), b(d.size());
+        std::mt19937_64 rng(seed);
+        for (std::size_t k = 0; k < d.size(); ++k) {
+          const PosePair pair = benchmarkPoses(mesh.bounds(), d[k], rng);
+          a[k] = pair.a;
+          b[k] = pair.b;
+        }
+        return py::make_tuple(poseArrays(a), poseArrays(b));
+      },
+      py::arg("mesh"), py::arg("distances"), py::kw_only(), py::arg("seed") = 1,
+      "Two copies of `mesh` for each distance, as docs/benchmark.md places them: each turned "
+      "at random about its bounding box's centre, the centres `distance` benchmark units "
+      "apart along x (the unit: half the box's largest edge). Returns (poses_a, poses_b), "
+      "(K, 4, 4) each; the same seed gives the same poses.");
   m.def(
       "collide",
       [](const TreePtr& a, const py::handle& poseA, const TreePtr& b, const py::handle& poseB,

@@ -18,8 +18,10 @@ namespace adb::python {
 namespace {
 
 using scene::Scene;
+/// Python's dict of meshes given in code, by shape name.
+using MeshMap = std::map<std::string, std::shared_ptr<TriangleMesh>>;
 
-scene::GivenMeshes givenMeshes(const std::map<std::string, std::shared_ptr<TriangleMesh>>& m) {
+scene::GivenMeshes givenMeshes(const MeshMap& m) {
   scene::GivenMeshes out;
   for (const auto& [name, mesh] : m) {
     if (!mesh) throw MeshError("meshes['" + name + "']: None, expected an adb.Mesh");
@@ -49,17 +51,17 @@ void bindScene(py::module_& m) {
       .def_static(
           "from_json",
           [](const std::string& text, const std::filesystem::path& folder,
-             const std::map<std::string, std::shared_ptr<TriangleMesh>>& meshes) {
+             const MeshMap& meshes) {
             return scene::parseScene(text, "<json>", folder, givenMeshes(meshes));
           },
           py::arg("text"), py::kw_only(), py::arg("folder") = std::filesystem::path("."),
-          py::arg("meshes") = std::map<std::string, std::shared_ptr<TriangleMesh>>{},
+          py::arg("meshes") = MeshMap{},
           "A scene from JSON text; `folder` resolves mesh files, and a 'mesh' shape without a "
           "'file' takes the adb.Mesh `meshes` holds under its name.")
       .def_static(
           "from_dict",
           [](const py::dict& d, const std::filesystem::path& folder,
-             const std::map<std::string, std::shared_ptr<TriangleMesh>>& meshes) {
+             const MeshMap& meshes) {
             // numpy arrays and scalars (positions, quaternions) are written as their lists.
             const py::cpp_function asList([](const py::handle& value) -> py::object {
               if (py::hasattr(value, "tolist")) return value.attr("tolist")();
@@ -74,16 +76,14 @@ void bindScene(py::module_& m) {
             return scene::parseScene(text, "<dict>", folder, givenMeshes(meshes));
           },
           py::arg("scene"), py::kw_only(), py::arg("folder") = std::filesystem::path("."),
-          py::arg("meshes") = std::map<std::string, std::shared_ptr<TriangleMesh>>{},
+          py::arg("meshes") = MeshMap{},
           "A scene from a dict of the scene file's schema (a scene built in Python). A 'mesh' "
           "shape without a 'file' takes the adb.Mesh `meshes` holds under its name.")
       .def_static(
           "pile",
           [](int bodies, long long triangles, long long seed, const std::string& floor,
              int steps, const std::vector<std::filesystem::path>& meshes) {
-            if (bodies < 1 || bodies > 100000) {
-              throw SettingsError("bodies: " + std::to_string(bodies) + ", expected 1 to 100000");
-            }
+            requireRange(bodies, 1, 100000, "bodies");
             requireRange(static_cast<double>(triangles), 12, 1e7, "triangles");
             requireRange(static_cast<double>(seed), 0, 9e18, "seed");
             requireRange(steps, 1, 1e8, "steps");

@@ -19,24 +19,11 @@ def translation(x=0.0, y=0.0, z=0.0):
     return pose
 
 
-def random_rotations(rng, k):
-    """k uniformly random rotation matrices (from normalised Gaussian quaternions)."""
-    q = rng.normal(size=(k, 4))
-    q /= np.linalg.norm(q, axis=1, keepdims=True)
-    w, x, y, z = q.T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
-    ], 1)
-
-
 def random_poses(rng, k, spread):
-    """k random poses: random rotations, translations uniform in [-spread, spread]^3."""
-    poses = np.tile(np.eye(4), (k, 1, 1))
-    poses[:, :3, :3] = random_rotations(rng, k)
-    poses[:, :3, 3] = rng.uniform(-spread, spread, size=(k, 3))
-    return poses
+    """k random poses: uniformly random rotations (normalised Gaussian quaternions),
+    translations uniform in [-spread, spread]^3."""
+    return adb.poses_from_quaternions(rng.normal(size=(k, 4)),
+                                      rng.uniform(-spread, spread, size=(k, 3)))
 
 
 @pytest.fixture(scope="session")

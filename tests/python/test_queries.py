@@ -53,24 +53,11 @@ def test_three_by_four_poses_equal_four_by_four(torus):
         adb.collide(torus, I4, torus, p, mode="exact").node_pairs
 
 
-def quaternion_matrix(w, x, y, z):
-    """Eigen's Quaterniond::normalized().toRotationMatrix(), operation for operation."""
-    n = np.sqrt(x * x + y * y + z * z + w * w)
-    w, x, y, z = w / n, x / n, y / n, z / n
-    tx, ty, tz = 2 * x, 2 * y, 2 * z
-    twx, twy, twz = tx * w, ty * w, tz * w
-    txx, txy, txz = tx * x, ty * x, tz * x
-    tyy, tyz, tzz = ty * y, tz * y, tz * z
-    return np.array([[1 - (tyy + tzz), txy - twz, txz + twy],
-                     [txy + twz, 1 - (txx + tzz), tyz - twx],
-                     [txz - twy, tyz + twx, 1 - (txx + tyy)]])
-
-
-def csv_pose(row, side):
-    pose = np.eye(4)
-    pose[:3, :3] = quaternion_matrix(*(float(row[f"{side}_q{c}"]) for c in "wxyz"))
-    pose[:3, 3] = [float(row[f"{side}_t{c}"]) for c in "xyz"]
-    return pose
+def csv_poses(rows, side):
+    """The CSV's poses, made by the C++ code that made the tool's (Pose::fromQuaternion)."""
+    quaternions = [[float(r[f"{side}_q{c}"]) for c in "wxyz"] for r in rows]
+    translations = [[float(r[f"{side}_t{c}"]) for c in "xyz"] for r in rows]
+    return adb.poses_from_quaternions(quaternions, translations)
 
 
 def test_answers_equal_the_cpp_tools_on_the_same_poses(tmp_path, knot):
@@ -88,8 +75,7 @@ def test_answers_equal_the_cpp_tools_on_the_same_poses(tmp_path, knot):
     exact = [r for r in rows if r["method"] == "exact"]
     budgetless = [r for r in rows if r["method"] == "adb" and r["budget_us"] == ""]
     assert len(exact) == 9 * 25 and len(budgetless) == len(exact)
-    poses_a = np.array([csv_pose(r, "a") for r in exact])
-    poses_b = np.array([csv_pose(r, "b") for r in exact])
+    poses_a, poses_b = csv_poses(exact, "a"), csv_poses(exact, "b")
     many = adb.collide_many(knot, poses_a, knot, poses_b, mode="exact")
     expected = np.array([r["collides"] == "1" for r in exact])
     assert 0 < expected.sum() < len(expected)  # both answers occur
@@ -232,6 +218,24 @@ def test_no_tree_is_a_type_error_not_a_crash(torus):
         adb.collide(None, I4, torus, I4)
     with pytest.raises(TypeError):
         adb.collide_many(torus, I4, None, I4)
+
+
+def test_pose_helpers():
+    half_turn = adb.poses_from_quaternions([[0, 0, 0, 2]], [[1, 2, 3]])[0]  # normalised
+    np.testing.assert_allclose(half_turn[:3, :3], np.diag([-1.0, -1, 1]), atol=1e-15)
+    np.testing.assert_array_equal(half_turn[:3, 3], [1, 2, 3])
+    with pytest.raises(adb.PoseError, match=r"quaternions\[0\]: not a rotation"):
+        adb.poses_from_quaternions([[0, 0, 0, 0]], [[0, 0, 0]])
+    with pytest.raises(adb.PoseError, match="expected \\(K, 4\\) and \\(K, 3\\)"):
+        adb.poses_from_quaternions([[1, 0, 0, 0]], [[0, 0]])
+    mesh = adb.model("knot", 1000)
+    a, b = adb.benchmark_poses(mesh, [0.5, 1.5], seed=4)
+    again, _ = adb.benchmark_poses(mesh, [0.5, 1.5], seed=4)
+    np.testing.assert_array_equal(a, again)
+    unit = np.ptp(mesh.bounds, axis=0).max() / 2
+    centre = np.append(mesh.bounds.mean(axis=0), 1)
+    gaps = (b @ centre)[:, :3] - (a @ centre)[:, :3]  # the box centres, posed
+    np.testing.assert_allclose(gaps, [[0.5 * unit, 0, 0], [1.5 * unit, 0, 0]], atol=1e-12)
 
 
 def test_check_pose_returns_the_checked_matrix():

@@ -120,7 +120,7 @@ class FrameScheduler {
   std::vector<std::uint32_t> m_batch; // the pairs of a round: indices into m_pairs
   std::vector<QueryRequest> m_requests;  // and their requests
   // Contacts of whole pairs gathered on the pool (DeferredPair::gathered indexes them): a
-  // ContactSelection is 8 to 20 KB, so they are kept and reused, not made per step.
+  // ContactSelection is 10 KB (float) or 20 KB (double), so they are kept and reused, not made per step.
   struct GatheredContacts {
     ContactSelection selection;
     std::uint64_t work = 0;

@@ -217,6 +217,13 @@ PairFrame pairFrame(const btCollisionObjectWrapper* body0, const btCollisionObje
   return f;
 }
 
+// Whether the closed-form tests cover the shape (localConvex's kinds other than General).
+bool isClosedForm(const btCollisionShape& shape) {
+  const int type = shape.getShapeType();
+  return type == SPHERE_SHAPE_PROXYTYPE || type == CAPSULE_SHAPE_PROXYTYPE ||
+         type == BOX_SHAPE_PROXYTYPE;
+}
+
 // The closed-form contacts of a sphere, capsule or box against the triangles within reach,
 // offered to `selection`; returns the work (triangles and nodes visited).
 std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& selection) {
@@ -268,28 +275,28 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
                                              const btDispatcherInfo& info,
                                              btManifoldResult* result) {
   btPersistentManifold* manifold = manifoldFor(body0, body1, result);
-  const PairFrame f = pairFrame(
-      body0, body1, !m_swapped,
-      btMax(breakingThreshold(), result->m_closestPointDistanceThreshold) + speculativeReach());
-  if (!f.finite) return 0;
   detail::ContactSelection selection;
-  if (f.local.kind == LocalConvex::General) {
+  if (gathersOffThread(body0, body1)) {  // the route the scheduler's pool takes, here at once
     const std::uint64_t work =
-        generalConvexContacts(*m_dispatcher, f.meshWrap, f.convexWrap, f.local, f.reach,
-                              f.meshIsBody0, info, *result, selection);
-    selection.write(*result, f.meshIsBody0, *manifold);
-    result->refreshContactPoints();
+        gather(body0, body1, result->m_closestPointDistanceThreshold, selection);
+    writeSelection(selection, *result);
     return work;
   }
-  const std::uint64_t work = closedFormContacts(f, selection);
-  writeSelection(selection, *result);
+  const PairFrame f = pairFrame(body0, body1, !m_swapped,
+                                candidateThreshold(result->m_closestPointDistanceThreshold));
+  if (!f.finite) return 0;
+  const std::uint64_t work = generalConvexContacts(*m_dispatcher, f.meshWrap, f.convexWrap,
+                                                   f.local, f.reach, f.meshIsBody0, info,
+                                                   *result, selection);
+  selection.write(*result, f.meshIsBody0, *manifold);
+  result->refreshContactPoints();
   return work;
 }
 
+// By the convex shape's type alone: deciding it must cost the stepping thread nothing.
 bool MeshConvexAlgorithm::gathersOffThread(const btCollisionObjectWrapper* body0,
                                            const btCollisionObjectWrapper* body1) const {
-  const PairFrame f = pairFrame(body0, body1, !m_swapped, breakingThreshold() + speculativeReach());
-  return f.finite && f.local.kind != LocalConvex::General;
+  return isClosedForm(*(m_swapped ? body0 : body1)->getCollisionShape());
 }
 
 std::uint64_t MeshConvexAlgorithm::gather(const btCollisionObjectWrapper* body0,
@@ -297,10 +304,14 @@ std::uint64_t MeshConvexAlgorithm::gather(const btCollisionObjectWrapper* body0,
                                           btScalar closestPoints,
                                           detail::ContactSelection& selection) const {
   selection.clear();
-  const PairFrame f = pairFrame(
-      body0, body1, !m_swapped,
-      btMax(breakingThreshold(), closestPoints) + speculativeReach());
-  return closedFormContacts(f, selection);
+  const PairFrame f = pairFrame(body0, body1, !m_swapped, candidateThreshold(closestPoints));
+  // A pose too far out for its relative pose to be finite offers nothing (acceptPoses has
+  // refused non-finite poses already).
+  return f.finite ? closedFormContacts(f, selection) : 0;
+}
+
+double MeshConvexAlgorithm::candidateThreshold(btScalar closestPoints) const {
+  return btMax(breakingThreshold(), closestPoints) + speculativeReach();
 }
 
 }  // namespace adb

@@ -24,6 +24,11 @@ class MeshConvexAlgorithm : public ManifoldAlgorithm {
   std::uint64_t gather(const btCollisionObjectWrapper* body0,
                        const btCollisionObjectWrapper* body1, btScalar closestPoints,
                        detail::ContactSelection& selection) const override;
+
+ private:
+  /// How far apart candidates may be: the manifold's breaking threshold (or the result's
+  /// closest-point threshold, if larger) and this step's speculative reach.
+  double candidateThreshold(btScalar closestPoints) const;
 };
 
 }  // namespace adb

@@ -79,9 +79,10 @@ struct FrameSettings {
   /// pairs whose grants are decided before any of them runs (without a budget, a group of
   /// pairs is one round); without a budget the pairs of a mesh with a plane, box, sphere or
   /// capsule gather their contacts on the pool too. Their bookkeeping and every contact
-  /// written to Bullet happen on the thread that called stepSimulation, in pair order. So with or without a node-pair budget the simulation is
-  /// the same bit for bit at any count. A time budget is wall-clock time, shared by the
-  /// threads. Bullet's own work stays on the stepping thread.
+  /// written to Bullet happen on the thread that called stepSimulation, in pair order. So
+  /// with or without a node-pair budget the simulation is the same bit for bit at any count.
+  /// A time budget is wall-clock time, shared by the threads. Bullet's own work stays on the
+  /// stepping thread.
   int threads = 1;
 };
 
