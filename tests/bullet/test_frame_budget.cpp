@@ -325,7 +325,9 @@ TEST(FrameBudget, ABudgetNeverReachedGivesTheSameSimulationAsNoBudget) {
   std::uint64_t work = 0, need = 0;
   const std::vector<std::uint64_t> free = trajectory(FrameSettings{}, cut, work, &need);
   ASSERT_GT(work, 10000u) << "the pile must collide for this test to mean anything";
-  EXPECT_EQ(need, work) << "without fronts the need from the roots is what was evaluated";
+  // Without fronts the need from the roots is what was evaluated, and what the pairs that
+  // kept their contacts needed when they last ran.
+  EXPECT_GE(need, work);
   FrameSettings byWork;
   byWork.budgetNodePairs = 1'000'000'000;
   FrameSettings byTime;
@@ -364,7 +366,7 @@ TEST(FrameBudget, FrontsCutASettlingPilesNodePairsWithTheSameContacts) {
     ASSERT_EQ(withFronts[step], without[step]) << "trajectories part at step " << step + 1;
   }
   EXPECT_EQ(walkedNeed, descendedNeed);
-  EXPECT_EQ(descended, descendedNeed);
+  EXPECT_LE(descended, descendedNeed);  // resting pairs kept their contacts: less evaluated
   // Measured: 0.61 over the 180 steps of the fall and settling (2.27 of 3.73 million; the
   // world's pairs, which keep no fronts, included).
   EXPECT_LT(double(walked), 0.7 * double(descended)) << walked << " of " << descended;

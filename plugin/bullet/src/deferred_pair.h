@@ -39,6 +39,7 @@ struct DeferredPair {
   StopReason stop = StopReason::Completed;
   bool written = false;        // its contacts are in its manifold
   bool resting = false;        // a whole pair left out of the first pass: its mesh barely moved
+  bool reused = false;         // kept its contacts without colliding: its bodies are at rest
   // A whole pair whose contacts were gathered on the pool this step: its index in the
   // scheduler's gathered contacts; -1 otherwise.
   std::int32_t gathered = -1;

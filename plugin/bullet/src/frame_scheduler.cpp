@@ -152,6 +152,7 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
     const std::uint64_t rx = x.algorithm->lastRun(), ry = y.algorithm->lastRun();
     return rx != ry ? rx < ry : x.sequence < y.sequence;
   });
+  if (settings.keepRestingContacts) keepRestingContacts();
   m_binding = binding(settings);
   gatherWholes(settings);
   firstPass(settings);
@@ -278,10 +279,12 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
   std::uint64_t units = 0;
   double micros = 0.0;
   for (const DeferredPair& p : m_wholes) {
+    if (p.reused) continue;
     units += expectedCost(p.algorithm->lastWork(), kFirstWholeWork);
     micros += m_costs.expectedWholeMicros(*p.algorithm);
   }
   for (const DeferredPair& p : m_pairs) {
+    if (p.reused) continue;
     const std::uint64_t cost = expectedCost(p.meshMesh().needed(), kFirstGrant);
     units += cost;
     micros += static_cast<double>(cost) * m_costs.microsPerNodePair() + m_costs.writeMicros();
@@ -299,10 +302,16 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
 // floor got 0.3 % of a quarter budget, wrote no contacts, and the pile sank through itself
 // and the floor (docs/bullet-results.md).
 void FrameScheduler::firstPass(const FrameSettings& settings) {
-  std::uint64_t anchoredPairs = 0;
-  for (const DeferredPair& p : m_pairs) anchoredPairs += anchored(p) ? 1 : 0;
-  for (const DeferredPair& p : m_wholes) anchoredPairs += anchored(p) ? 1 : 0;
-  const std::uint64_t all = m_pairs.size() + m_wholes.size();
+  // Pairs that kept their contacts (keepRestingContacts) wait for nothing.
+  std::uint64_t anchoredPairs = 0, all = 0;
+  for (const DeferredPair& p : m_pairs) {
+    anchoredPairs += !p.reused && anchored(p) ? 1 : 0;
+    all += p.reused ? 0 : 1;
+  }
+  for (const DeferredPair& p : m_wholes) {
+    anchoredPairs += !p.reused && anchored(p) ? 1 : 0;
+    all += p.reused ? 0 : 1;
+  }
   for (bool group : {true, false}) {
     std::uint64_t waiting = group ? anchoredPairs : all - anchoredPairs;
     // The whole pairs first (a box floor, a plane, a convex body: settled in one run), the
@@ -310,7 +319,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
     // others their share; a pair that does not fit is left for the refinement, and if it
     // does not run this step it keeps its last contacts.
     for (DeferredPair& pair : m_wholes) {
-      if (anchored(pair) != group) continue;
+      if (pair.reused || anchored(pair) != group) continue;
       // Under a budget too small for every pair, a pair with the world whose mesh has
       // barely moved since it last ran keeps its contacts (refreshed for the new poses):
       // they are as good as new, and its cost goes to the pairs that changed.
@@ -352,7 +361,7 @@ void FrameScheduler::firstQueries(bool group, std::uint64_t waiting,
     std::uint64_t reserved = 0;
     for (; next < m_pairs.size() && m_batch.size() < roundPairs; ++next) {
       const DeferredPair& pair = m_pairs[next];
-      if (anchored(pair) != group) continue;
+      if (pair.reused || anchored(pair) != group) continue;
       const std::uint64_t wanted = firstWanted(pair);
       const std::uint64_t grant = std::min(wanted, share(settings, waiting, reserved, micros));
       reserved = saturatingAdd(reserved, grant);
@@ -493,6 +502,7 @@ void FrameScheduler::gatherWholes(const FrameSettings& settings) {
   // Under any budget a whole pair may not run at all, and on one thread nothing is gained.
   if (m_pool.threads() == 1 || !unbudgeted(settings)) return;
   for (DeferredPair& pair : m_wholes) {
+    if (pair.reused) continue;
     PairWrappers wrappers(pair);
     if (!pair.algorithm->gathersOffThread(&wrappers.body0, &wrappers.body1)) continue;
     pair.algorithm->prepareGather(&wrappers.body0, &wrappers.body1);  // Bullet's state: here
@@ -520,6 +530,40 @@ void FrameScheduler::keepSkipped() {
     PairWrappers wrappers(pair);
     pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
     ++m_stats.otherKeptPairs;
+  }
+}
+
+// Pairs whose bodies barely moved against each other since their contacts were made keep
+// them, re-measured at the new poses, and cost nothing this step (Jolt, PhysX and Box2D
+// recycle contacts the same way): a resting pile pays only for what moves, and its contacts
+// hold still, so that Bullet's solver settles it and lets it sleep. A mesh-mesh pair a
+// budget cut is not kept: its contacts were not all made. Decided before the budget is
+// spent, from the poses alone, so that node-pair budgets stay reproducible and a budget
+// never reached changes nothing.
+void FrameScheduler::keepRestingContacts() {
+  for (DeferredPair& pair : m_pairs) {
+    MeshMeshAlgorithm& algorithm = pair.meshMesh();
+    if (algorithm.cut()) continue;
+    if (!algorithm.contactsStillHold(
+            algorithm.motionSinceLastRun(pair.transform0, pair.transform1))) {
+      continue;
+    }
+    PairWrappers wrappers(pair);
+    algorithm.keepLastContacts(&wrappers.body0, &wrappers.body1);
+    pair.written = true;
+    pair.reused = true;
+    pair.confidence = 1.0;
+    pair.completeness = 1.0;
+    --m_unqueried;
+    ++m_stats.reusedPairs;
+  }
+  for (DeferredPair& pair : m_wholes) {
+    if (!pair.algorithm->contactsStillHold(pair.motion)) continue;
+    PairWrappers wrappers(pair);
+    pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
+    pair.written = true;
+    pair.reused = true;
+    ++m_stats.otherReusedPairs;
   }
 }
 
@@ -609,6 +653,10 @@ bool FrameScheduler::outOfTime(const FrameSettings& s) const {
 double FrameScheduler::writePair(DeferredPair& pair, const FrameSettings& settings) {
   const Clock::time_point start = Clock::now();
   const ContactCount c = pair.meshMesh().writeContacts(pair, settings);
+  if (pair.decided()) {
+    const PairWrappers wrappers(pair);
+    pair.algorithm->noteContactsMade(&wrappers.body0, &wrappers.body1, m_step);
+  }
   m_stats.exactContacts += c.exact;
   m_stats.plausibleContacts += c.plausible;
   pair.written = true;

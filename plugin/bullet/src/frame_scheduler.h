@@ -75,6 +75,8 @@ class FrameScheduler {
   /// The whole pairs not run yet, in their order, while what is left covers them; with
   /// `resting`, also those that kept their contacts because their mesh barely moved.
   void runWholesLeft(const FrameSettings& settings, bool resting);
+  /// Pairs at rest keep their contacts without colliding (before the budget is spent).
+  void keepRestingContacts();
   /// Pairs the budget left unrun keep their last contacts, refreshed for the new poses.
   void keepSkipped();
   /// A step without a budget runs every whole pair: the closed-form ones (a mesh against a

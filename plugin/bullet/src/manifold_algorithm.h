@@ -91,6 +91,20 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// since the last collideScheduled (infinite if it never ran), for the wrappers' world
   /// transforms: a skipped pair's kept contacts stay true while it is small.
   btScalar motionSinceLastRun(const btTransform& transform0, const btTransform& transform1) const;
+  /// Whether the pair may keep its contacts this step instead of colliding again: they were
+  /// made when the pair last ran, its manifold still holds some, the mesh moved less than
+  /// kReuseMotion of the breaking threshold against the other body since (the contacts'
+  /// anchors, re-measured at the new poses, are then still where the surfaces meet), and
+  /// neither body is fast enough for speculative contacts. `motion` is
+  /// motionSinceLastRun() for the step's poses.
+  bool contactsStillHold(btScalar motion) const;
+  /// Notes that the pair's contacts were made now, for bodies posed as `body0` and `body1`:
+  /// what motionSinceLastRun() measures from. The scheduler's, for mesh-mesh pairs.
+  void noteContactsMade(const btCollisionObjectWrapper* body0,
+                        const btCollisionObjectWrapper* body1, std::uint64_t step) {
+    m_lastRun = step;
+    rememberPoses(body0, body1);
+  }
   /// The scheduler's measure of the last collideScheduled's time (microseconds).
   double lastMicros() const { return m_lastMicros; }
   void setLastMicros(double micros) { m_lastMicros = micros; }

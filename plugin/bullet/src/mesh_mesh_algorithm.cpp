@@ -8,6 +8,7 @@
 #include <string>
 
 #include "adb/bullet/mesh_shape.h"
+#include "contact_reduction.h"
 #include "conversions.h"
 #include "frame_scheduler.h"
 #include "pair_contacts.h"
@@ -17,8 +18,8 @@ namespace adb {
 namespace {
 
 
-// Triangle pairs turned into contacts per pair and step at most: the manifold keeps 4 points
-// (Bullet's reduction picks the widest), so more would cost without changing the result much.
+// Triangle pairs turned into contacts per pair and step at most: the candidates from which
+// reduceContacts picks the manifold's 4; more would cost without changing the choice much.
 constexpr std::uint32_t kMaxContactPairs = 64;
 
 // Contact sampling: at most 4 intersecting triangle pairs per region of the overlap (a node
@@ -165,6 +166,9 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
     m_pointCount.plausible = detail::addPlausibleContacts(posed, m_traversal.openPairs(),
                                                           settings, hint, m_points);
   }
+  if (const btPersistentManifold* manifold = existingManifold()) {
+    detail::reduceContacts(m_points, *manifold);
+  }
   m_pointsReady = true;
 }
 
@@ -172,7 +176,7 @@ ContactCount MeshMeshAlgorithm::writePoints(const btCollisionObjectWrapper* body
                                             const btCollisionObjectWrapper* body1,
                                             btManifoldResult& result) {
   btPersistentManifold* manifold = manifoldFor(body0, body1, &result);
-  detail::writeContactPoints(m_points, result, *manifold);
+  detail::writeContactPoints(m_points, result, *manifold, body0->m_partId, body1->m_partId);
   result.refreshContactPoints();
   m_pointsReady = false;
   return m_pointCount;

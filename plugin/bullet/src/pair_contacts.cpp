@@ -139,16 +139,111 @@ Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCe
   return fromBt(boxCentre1 - boxCentre0);
 }
 
+namespace {
+
+// Whether a manifold point was made by the same features as `other`.
+bool sameFeatures(const btManifoldPoint& point, const btManifoldPoint& other) {
+  return point.m_index0 == other.m_index0 && point.m_index1 == other.m_index1 &&
+         point.m_partId0 == other.m_partId0 && point.m_partId1 == other.m_partId1 &&
+         (point.m_index0 != -1 || point.m_index1 != -1);
+}
+
+// The point of last step whose solver state `point` takes over: the one with its features,
+// else the nearest unclaimed one within the breaking threshold on body A (Bullet's rule in
+// btPersistentManifold::getCacheEntry); -1 for none.
+int predecessor(const btManifoldPoint& point, const btManifoldPoint* previous, int count,
+                const bool* claimed, btScalar threshold) {
+  for (int k = 0; k < count; ++k) {
+    if (!claimed[k] && sameFeatures(point, previous[k])) return k;
+  }
+  int nearest = -1;
+  btScalar best = threshold * threshold;
+  for (int k = 0; k < count; ++k) {
+    if (claimed[k]) continue;
+    const btScalar d = (previous[k].m_localPointA - point.m_localPointA).length2();
+    if (d < best) {
+      best = d;
+      nearest = k;
+    }
+  }
+  return nearest;
+}
+
+// What btPersistentManifold::replaceContactPoint keeps of a replaced point: the solver's
+// impulses (its warm start) and the point's age.
+void inheritSolverState(btManifoldPoint& point, const btManifoldPoint& from) {
+  point.m_appliedImpulse = from.m_appliedImpulse;
+  point.m_prevRHS = from.m_prevRHS;
+  point.m_appliedImpulseLateral1 = from.m_appliedImpulseLateral1;
+  point.m_appliedImpulseLateral2 = from.m_appliedImpulseLateral2;
+  point.m_lifeTime = from.m_lifeTime;
+}
+
+// A point may stand in for its successor with the same features while both its anchors lie
+// within this share of the breaking threshold of the new ones and its normal within
+// kRecycleCosine of the new one (about 5 degrees).
+constexpr btScalar kRecycleShare = btScalar(0.25);
+constexpr btScalar kRecycleCosine = btScalar(0.996);
+
+bool recyclable(const btManifoldPoint& point, const btManifoldPoint& old, btScalar threshold) {
+  if (!sameFeatures(point, old)) return false;
+  const btScalar near = kRecycleShare * threshold;
+  return (point.m_localPointA - old.m_localPointA).length2() < near * near &&
+         (point.m_localPointB - old.m_localPointB).length2() < near * near &&
+         point.m_normalWorldOnB.dot(old.m_normalWorldOnB) > kRecycleCosine;
+}
+
+}  // namespace
+
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
-                        btPersistentManifold& manifold) {
+                        btPersistentManifold& manifold, int partId0, int partId1) {
+  // Last step's points, then an empty manifold: the points written are exactly this step's
+  // (Bullet's matching by distance, fed more points than it holds, kept whichever four
+  // arrived in a lucky order, and handed one point's impulses to another).
+  btManifoldPoint previous[MANIFOLD_CACHE_SIZE];
+  const int count = manifold.getNumContacts();
+  for (int k = 0; k < count; ++k) previous[k] = manifold.getContactPoint(k);
+  bool claimed[MANIFOLD_CACHE_SIZE] = {};
+  manifold.clearManifold();
+  const btScalar threshold = manifold.getContactBreakingThreshold();
   for (const PendingContact& c : points) {
+    out.setShapeIdentifiersA(partId0, c.featureA);
+    out.setShapeIdentifiersB(partId1, c.featureB);
     out.addContactPoint(c.normalOnB, c.pointOnB, c.distance);
-    if (!c.softened) continue;
     btManifoldPoint* point = findPoint(manifold, c.pointOnB);
-    if (!point) continue;
+    if (!point) continue;  // refused, or a speculative point (its own manifold)
+    const int from = predecessor(*point, previous, count, claimed, threshold);
+    if (from >= 0) {
+      claimed[from] = true;
+      if (recyclable(*point, previous[from], threshold)) {
+        // The same features, about where they were: last step's point itself, its anchors
+        // and normal kept (re-measured by the caller's refreshContactPoints), as Box2D
+        // recycles a contact. The triangle pair's clipped point wanders over the triangles
+        // from step to step; a resting contact should not.
+        *point = previous[from];
+      } else {
+        inheritSolverState(*point, previous[from]);
+      }
+    }
+    if (!c.softened) continue;
     point->m_contactERP = c.erp;
     point->m_contactCFM = c.cfm;
     point->m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_CFM | BT_CONTACT_FLAG_HAS_CONTACT_ERP;
+  }
+  // Last step's points that no point of this step's took over stay while there is room and
+  // they lie apart from the new ones, as Bullet's persistent manifold keeps them: the
+  // caller's refreshContactPoints re-measures them at the new poses and drops those now
+  // farther than the breaking threshold. Exact contacts come only from crossing triangles:
+  // without this, a contact the solver had just pushed apart vanished, the body fell back
+  // into it, and the contact came back a step later: a resting body bounced for ever.
+  for (int k = 0; k < count && manifold.getNumContacts() < MANIFOLD_CACHE_SIZE; ++k) {
+    if (claimed[k]) continue;
+    bool apart = true;
+    for (int i = 0; i < manifold.getNumContacts() && apart; ++i) {
+      const btVector3 d = manifold.getContactPoint(i).m_localPointA - previous[k].m_localPointA;
+      apart = d.length2() >= threshold * threshold;
+    }
+    if (apart) manifold.addManifoldPoint(previous[k]);
   }
 }
 
@@ -161,7 +256,11 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
     worldTriangle(*pair.a, pair.poseA, w.triangleA, a);
     worldTriangle(*pair.b, pair.poseB, w.triangleB, b);
     if (w.distance > 0.0f) {
-      written += addNearContact(pair, a, b, out) ? 1 : 0;
+      if (addNearContact(pair, a, b, out)) {
+        out.back().featureA = static_cast<int>(pair.a->meshTriangle(w.triangleA));
+        out.back().featureB = static_cast<int>(pair.b->meshTriangle(w.triangleB));
+        ++written;
+      }
       continue;
     }
     const TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
@@ -170,7 +269,10 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
     if (facesAway(a, pair.facingA, -c.normal) || facesAway(b, pair.facingB, c.normal)) continue;
     // Bullet: the normal on B points from body 1 towards body 0, the point lies on body 1,
     // and a negative distance is a penetration.
-    out.push_back({toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth)});
+    PendingContact point{toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth)};
+    point.featureA = static_cast<int>(pair.a->meshTriangle(w.triangleA));
+    point.featureB = static_cast<int>(pair.b->meshTriangle(w.triangleB));
+    out.push_back(point);
     ++written;
   }
   return written;
@@ -196,6 +298,8 @@ std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<Open
   for (int i = 0; i < count; ++i) {
     const PlausibleContact c = plausibleContact(pair, best[i], hint);
     PendingContact point{toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth)};
+    point.featureA = plausibleFeature(best[i].a);
+    point.featureB = plausibleFeature(best[i].b);
     if (settings.softenPlausible) {
       const double p = std::clamp(static_cast<double>(best[i].p), 0.0, 1.0);
       point.softened = true;

@@ -29,22 +29,36 @@ struct PosedPair {
 /// A contact point as Bullet takes it: the normal on body 1 points towards body 0, the point
 /// lies on body 1, and a negative distance is a penetration. A softened (plausible) point
 /// carries its own ERP and CFM.
+///
+/// Its identity: the features of body 0 and body 1 that made it, written to the manifold
+/// point's m_index0 and m_index1 (Bullet's triangle index), so that the same point is known
+/// again next step. An exact point's are its two triangles (>= 0, the meshes' own indices); a plausible point's are
+/// its two tree nodes as plausibleFeature(node) (<= -2: no triangle); -1 is none.
 struct PendingContact {
   btVector3 normalOnB;
   btVector3 pointOnB;
   btScalar distance = 0;
   bool softened = false;
   btScalar erp = 0, cfm = 0;
+  int featureA = -1, featureB = -1;
 };
+
+/// A tree node as a contact's feature: negative, below Bullet's -1 (none), so that it is
+/// never taken for a triangle index.
+constexpr int plausibleFeature(std::uint32_t node) { return -2 - static_cast<int>(node); }
 
 /// One pair's contact points of a step, in the order they are written (reused: it grows to
 /// the pair's most points, then stays).
 using ContactPoints = std::vector<PendingContact>;
 
-/// Writes `points` through `out` (btManifoldResult or a SpeculativeResult), in order, and sets
-/// the softened ones' ERP and CFM on the points `manifold` kept. The stepping thread's part.
+/// Writes `points` through `out` (btManifoldResult or a SpeculativeResult) in place of what
+/// `manifold` held, in order, each with its features and the wrappers' part ids (`partId0`,
+/// `partId1`), and sets the softened ones' ERP and CFM. A point whose features a point of
+/// last step had takes over that point's solver state (its impulses, warm-starting the
+/// solver, and its age); one without takes it from the nearest unclaimed point within the
+/// breaking threshold, as Bullet's own matching would. The stepping thread's part.
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
-                        btPersistentManifold& manifold);
+                        btPersistentManifold& manifold, int partId0, int partId1);
 
 /// The preferred separation direction from body 0 towards body 1 for this step: the last
 /// step's contact normals when the manifold has points (warm starting: resting contact keeps

@@ -84,6 +84,11 @@ struct FrameSettings {
   /// A time budget is wall-clock time, shared by the threads. Bullet's own work stays on the
   /// stepping thread.
   int threads = 1;
+  /// Pairs whose bodies barely moved against each other since their contacts were made
+  /// keep them, re-measured at the new poses, without colliding (FrameStats::reusedPairs):
+  /// what lets a resting pile settle, sleep and cost little. Off only to measure what it
+  /// does (docs/bullet-results.md, "Piles that fall asleep").
+  bool keepRestingContacts = true;
 };
 
 /// The largest FrameSettings::threads accepted.
@@ -133,12 +138,19 @@ struct FrameStats {
   BadPose badPoses[kNamedBadPoses];
 
   std::uint32_t pairs = 0;          ///< mesh-mesh pairs whose boxes overlapped
+  /// Of those, the ones whose bodies barely moved against each other since their contacts
+  /// were made: they kept them, re-measured at the new poses, without a query (counted as
+  /// decided exactly).
+  std::uint32_t reusedPairs = 0;
   /// adb pairs that are not mesh-mesh (a mesh against a convex shape, a plane or another
   /// concave shape; compound children included): each runs whole or not at all.
   std::uint32_t otherPairs = 0;
   /// Of those, the ones the budget skipped: they keep their last contacts, refreshed for
   /// the new poses.
   std::uint32_t otherKeptPairs = 0;
+  /// Of the other pairs, the ones at rest that kept their contacts without colliding (as
+  /// reusedPairs), before any budget was spent.
+  std::uint32_t otherReusedPairs = 0;
   /// Node pairs (and, for the other pairs, nodes and triangles visited) the step would
   /// need for exact contacts everywhere, from each pair's last complete run: the scale
   /// against which to set a node-pair budget.
