@@ -179,20 +179,6 @@ void inheritSolverState(btManifoldPoint& point, const btManifoldPoint& from) {
   point.m_lifeTime = from.m_lifeTime;
 }
 
-// A point may stand in for its successor with the same features while both its anchors lie
-// within this share of the breaking threshold of the new ones and its normal within
-// kRecycleCosine of the new one (about 5 degrees).
-constexpr btScalar kRecycleShare = btScalar(0.25);
-constexpr btScalar kRecycleCosine = btScalar(0.996);
-
-bool recyclable(const btManifoldPoint& point, const btManifoldPoint& old, btScalar threshold) {
-  if (!sameFeatures(point, old)) return false;
-  const btScalar near = kRecycleShare * threshold;
-  return (point.m_localPointA - old.m_localPointA).length2() < near * near &&
-         (point.m_localPointB - old.m_localPointB).length2() < near * near &&
-         point.m_normalWorldOnB.dot(old.m_normalWorldOnB) > kRecycleCosine;
-}
-
 }  // namespace
 
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
@@ -215,15 +201,7 @@ void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
     const int from = predecessor(*point, previous, count, claimed, threshold);
     if (from >= 0) {
       claimed[from] = true;
-      if (recyclable(*point, previous[from], threshold)) {
-        // The same features, about where they were: last step's point itself, its anchors
-        // and normal kept (re-measured by the caller's refreshContactPoints), as Box2D
-        // recycles a contact. The triangle pair's clipped point wanders over the triangles
-        // from step to step; a resting contact should not.
-        *point = previous[from];
-      } else {
-        inheritSolverState(*point, previous[from]);
-      }
+      inheritSolverState(*point, previous[from]);
     }
     if (!c.softened) continue;
     point->m_contactERP = c.erp;
