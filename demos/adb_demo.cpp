@@ -1,8 +1,8 @@
 // adb-demo: runs scenes headless.
 //
 //   build/bin/adb-demo --scene FILE [options]
-//   build/bin/adb-demo [--mesh FILE]... [--bodies N] [--triangles N] [--floor mesh|box|plane]
-//                      [--seed S] [options]
+//   build/bin/adb-demo [--mesh FILE]... | [--model NAME] [--bodies N] [--triangles N]
+//                      [--floor mesh|box|plane] [--seed S] [--no-sleep] [options]
 //   options: [--steps N] [--out DIR] [--render] [--compare] [--backend adb|exact|gimpact|convex]
 //            [--budget-us US | --budget-pairs N] [--probe-every N] ...
 //
@@ -18,6 +18,7 @@
 
 #include "adb/scene/pile_scene.h"
 #include "adb/scene/scene_file.h"
+#include "adb/support/mesh_generators.h"
 #include "shared/command_line.h"
 #include "scene_run/scene_run.h"
 
@@ -29,6 +30,7 @@ struct Options {
   adb::scene::PileSpec pile;
   std::vector<std::filesystem::path> meshes;
   std::string floor = "mesh";
+  bool noSleep = false;
   std::string fronts;
   int threads = 1;
   int steps = 0;
@@ -38,7 +40,8 @@ struct Options {
   int kMin = 0;
 };
 
-const char* const kPileOnly[] = {"--mesh", "--bodies", "--triangles", "--seed", "--floor"};
+const char* const kPileOnly[] = {"--mesh",  "--model", "--bodies", "--triangles",
+                                 "--seed", "--floor", "--no-sleep"};
 
 void addOptions(CLI::App& app, Options& o) {
   app.add_option("--scene", o.sceneFile, "a scene file (docs/scenes.md); without it, the pile")
@@ -73,6 +76,9 @@ void addOptions(CLI::App& app, Options& o) {
                  "unresolved node pairs at or above it become plausible contacts (0.9)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--no-soften", o.run.noSoften, "plausible contacts push as hard as exact ones");
+  app.add_flag("--no-keep-contacts", o.run.noKeepContacts,
+               "pairs at rest collide every step instead of keeping their contacts (to "
+               "measure what keeping them does)");
   app.add_option("--fronts", o.fronts,
                  "mesh-mesh pairs keep the node pairs they evaluated and re-test what moved: "
                  "with a node-pair budget (default), always, or never")
@@ -86,6 +92,10 @@ void addOptions(CLI::App& app, Options& o) {
 
   app.add_flag("--render", o.run.render, "write DIR/frames/NNNNN.png, DIR/strip.png and "
                                          "DIR/movie.mp4 (with ffmpeg); needs --out");
+  app.add_flag("--contact-trace", o.run.contactTrace,
+               "write DIR/contact_churn.csv (each step's contact points kept, new, moved, "
+               "turned, dropped) and DIR/sleep_resets.csv (bodies whose deactivation timer "
+               "reset, with their contacts' churn); needs --out");
   app.add_flag("--compare", o.run.compare,
                "run it with adb, exact and gimpact and compare (DIR/comparison.png with "
                "--render)");
@@ -103,6 +113,12 @@ void addOptions(CLI::App& app, Options& o) {
   app.add_option("--mesh", o.meshes, "pile: bodies are copies of this mesh file (any format "
                                      "assimp reads), scaled to 0.8 across; repeat to cycle")
       ->check(CLI::ExistingFile);
+  app.add_option("--model", o.pile.model, "pile: every body this generated model (pipes, "
+                                         "gears, knot, torus, sphere, lock) at --triangles, "
+                                         "0.8 across")
+      ->check(CLI::IsMember(adb::gen::modelNames()))
+      ->excludes("--mesh");
+  app.add_flag("--no-sleep", o.noSleep, "pile: Bullet's deactivation off (bodies never sleep)");
   app.add_option("--bodies", o.pile.bodies, "pile: bodies (24)")->check(CLI::PositiveNumber);
   app.add_option("--triangles", o.pile.trianglesPerBody,
                  "pile: about this many triangles per generated body (1500)");
@@ -129,6 +145,7 @@ adb::scene::Scene pileScene(Options& o) {
   using Floor = adb::scene::PileSpec::Floor;
   o.pile.floor = o.floor == "box" ? Floor::Box : o.floor == "plane" ? Floor::Plane : Floor::Mesh;
   o.pile.meshes = o.meshes;
+  o.pile.sleeping = !o.noSleep;
   return adb::scene::makePileScene(o.pile);
 }
 
@@ -141,8 +158,9 @@ int run(const CLI::App& app, Options& o) {
       }
     }
   }
-  if (o.run.render && o.run.out.empty()) {
-    std::fprintf(stderr, "adb-demo: --render needs --out DIR\n");
+  if ((o.run.render || o.run.contactTrace) && o.run.out.empty()) {
+    std::fprintf(stderr, "adb-demo: %s needs --out DIR\n",
+                 o.run.render ? "--render" : "--contact-trace");
     return 2;
   }
   takeOverrides(app, o);

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "adb/scene/contact_trace.h"
 #include "adb/scene/recorder.h"
 #include "adb/scene/scene_file.h"
 #include "adb/scene/scene_world.h"
@@ -45,6 +47,7 @@ void applyOverrides(const SceneRunOptions& o, Scene& s) {
   if (o.noSoften) s.effects.softContacts = false;
   if (o.fronts) s.world.fronts = *o.fronts;
   if (o.threads) s.world.threads = *o.threads;
+  if (o.noKeepContacts) s.world.keepRestingContacts = false;
 }
 
 std::string budgetText(const scene::BudgetSpec& b) {
@@ -79,9 +82,9 @@ void printLine(const scene::StepRecord& r, const scene::Effects& effects) {
     std::printf("%6d %9.3f %6u %5u %9.4f %11u %7u\n", r.step, 1e3 * r.seconds, r.meshPairs,
                 r.cutPairs, r.meanConfidence, r.overlapping, r.events);
   } else {
-    std::printf("%6d %9.3f %6u %5u %9.4f %8u %10.4f %10.3f %7d\n", r.step, 1e3 * r.seconds,
-                r.meshPairs, r.cutPairs, r.meanConfidence, r.contacts, r.penetration, r.energy,
-                r.atRest);
+    std::printf("%6d %9.3f %6u %5u %9.4f %8u %10.4f %10.3f %7d %6d %4d\n", r.step,
+                1e3 * r.seconds, r.meshPairs, r.cutPairs, r.meanConfidence, r.contacts,
+                r.penetration, r.energy, r.atRest, r.asleep, r.lost);
   }
 }
 
@@ -90,8 +93,8 @@ void printHeader(const scene::Effects& effects) {
     std::printf("%6s %9s %6s %5s %9s %11s %7s\n", "step", "ms/step", "pairs", "cut", "conf.",
                 "overlapping", "events");
   } else {
-    std::printf("%6s %9s %6s %5s %9s %8s %10s %10s %7s\n", "step", "ms/step", "pairs", "cut",
-                "conf.", "contacts", "max pen.", "energy", "at rest");
+    std::printf("%6s %9s %6s %5s %9s %8s %10s %10s %7s %6s %4s\n", "step", "ms/step", "pairs",
+                "cut", "conf.", "contacts", "max pen.", "energy", "at rest", "asleep", "lost");
   }
 }
 
@@ -116,6 +119,8 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   std::unique_ptr<scene::Recorder> recorder =
       folder.empty() ? std::make_unique<scene::Recorder>(world)
                      : std::make_unique<scene::Recorder>(world, folder);
+  std::unique_ptr<scene::ContactTrace> trace;
+  if (o.contactTrace) trace = std::make_unique<scene::ContactTrace>(folder);
   const int steps = scene.world.steps;
   const int every = o.every > 0 ? o.every : std::max(1, steps / 10);
   const int frameEvery = framesEvery(o, scene);
@@ -134,6 +139,7 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
     } else {
       recorder->record(world);
     }
+    if (trace) trace->record(world);
     const bool inStrip = std::find(strip.begin(), strip.end(), step) != strip.end();
     const bool inMovie = step % frameEvery == 0 || step == steps;
     if (o.render && (inStrip || inMovie)) {
@@ -155,6 +161,17 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
   }
   progress.finish();
   result.summary = recorder->finish();
+  if (trace) {
+    const scene::ContactChurn& c = trace->total();
+    std::printf("contacts over the run: %u points held, %.1f %% with last step's features, "
+                "%.1f %% matched, %u new, %u moved over 1 mm, %u turned over 1 degree, %u "
+                "dropped; deactivation timers reset %llu times (%s/contact_churn.csv, "
+                "sleep_resets.csv)\n",
+                c.points, c.points ? 100.0 * c.keptId / c.points : 0.0,
+                c.points ? 100.0 * c.matched / c.points : 0.0, c.fresh, c.moved, c.turned,
+                c.dropped, static_cast<unsigned long long>(trace->resets()),
+                folder.string().c_str());
+  }
   if (o.render) {
     const int fps = std::max(1, static_cast<int>(std::lround(1.0 / (frameEvery * scene.world.timeStep))));
     const std::string movie = writeMovie(folder / "frames", fps, folder / "movie.mp4");
@@ -189,11 +206,16 @@ void printSummary(const RunSummary& s) {
     }
     std::printf("\n");
   }
-  if (s.dynamicBodies > 0) {
-    std::printf("at rest at the end: %d of %d; kinetic energy %.4f J\n", s.atRestAtEnd,
-                s.dynamicBodies, s.kineticAtEnd);
+  if (s.dynamicBodies == 0) return;
+  std::printf("at rest at the end: %d of %d; asleep (Bullet's deactivation) %d", s.atRestAtEnd,
+              s.dynamicBodies, s.asleepAtEnd);
+  if (s.allAsleepFrom > 0) std::printf(", all from step %d", s.allAsleepFrom);
+  std::printf("; kinetic energy %.4f J\n", s.kineticAtEnd);
+  if (!s.worldBounds) {
+    std::printf("bodies lost (fallen below the lowest static body): %d at most, %d at the end\n",
+                s.mostLost, s.lostAtEnd);
+    return;
   }
-  if (!s.worldBounds) return;
   std::printf("bodies lost (out of the world's bounds): %d at most, %d at the end; deepest "
               "vertex out of the bounds %.4f (%.2f %% of its body's size), at the end %.4f\n",
               s.mostLost, s.lostAtEnd, s.maxOutOfBounds, 100 * s.maxOutOfBoundsRelative,
@@ -203,18 +225,22 @@ void printSummary(const RunSummary& s) {
 void printComparison(const std::vector<RunResult>& runs) {
   const double gimpact = runs.back().summary.meanStepMillis;
   std::printf("\n| backend | ms/step | max ms/step | vs GImpact | pairs cut | mean conf. | "
-              "worst conf. | deepest contact | probed penetration | at rest (end) | kinetic "
-              "energy (end) |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "worst conf. | deepest contact | probed penetration | at rest (end) | asleep (end) "
+              "| all asleep from | lost | kinetic energy (end) |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const RunResult& r : runs) {
     const RunSummary& s = r.summary;
+    const std::string asleepFrom =
+        s.allAsleepFrom > 0 ? "step " + std::to_string(s.allAsleepFrom) : std::string("never");
     std::printf("| %s | %.2f | %.2f | %.1fx | %llu/%llu | %.4f | %.4f | %.4f | %.4f | %d/%d | "
-                "%.3f J |\n",
+                "%d/%d | %s | %d | %.3f J |\n",
                 s.backend.c_str(), s.meanStepMillis, s.maxStepMillis,
                 s.meanStepMillis > 0 ? gimpact / s.meanStepMillis : 0.0,
                 static_cast<unsigned long long>(s.cutPairSteps),
                 static_cast<unsigned long long>(s.meshPairSteps), s.meanConfidence,
                 s.worstConfidence, s.maxPenetration, s.maxProbedPenetration, s.atRestAtEnd,
-                s.dynamicBodies, s.kineticAtEnd);
+                s.dynamicBodies, s.asleepAtEnd, s.dynamicBodies, asleepFrom.c_str(), s.mostLost,
+                s.kineticAtEnd);
   }
 }
 

@@ -27,6 +27,8 @@ struct SceneRunOptions {
   std::vector<int> stripSteps;
   /// Run the scene with adb (its budget), exact contacts and GImpact, and compare.
   bool compare = false;
+  /// Write contact_churn.csv and sleep_resets.csv (adb/scene/contact_trace.h) into `out`.
+  bool contactTrace = false;
   // Overrides of the scene's world settings.
   std::optional<double> budgetMicros;
   std::optional<std::uint64_t> budgetNodePairs;
@@ -35,6 +37,7 @@ struct SceneRunOptions {
   bool noSoften = false;
   std::optional<adb::FrameSettings::Fronts> fronts;
   std::optional<int> threads;
+  bool noKeepContacts = false;  ///< resting pairs collide every step (an ablation)
 };
 
 /// Runs the scene; the exit code: 0, 1 when a body was lost (out of world.bounds) at some

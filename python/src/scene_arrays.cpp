@@ -83,7 +83,10 @@ py::dict summaryDict(const scene::RunSummary& s) {
   d["worst_confidence"] = s.worstConfidence;
   d["max_penetration"] = s.maxPenetration;
   d["most_lost"] = s.mostLost;
+  d["lost_at_end"] = s.lostAtEnd;
   d["at_rest_at_end"] = s.atRestAtEnd;
+  d["asleep_at_end"] = s.asleepAtEnd;
+  d["all_asleep_from"] = s.allAsleepFrom;
   d["dynamic_bodies"] = s.dynamicBodies;
   return d;
 }

@@ -82,7 +82,8 @@ void bindScene(py::module_& m) {
       .def_static(
           "pile",
           [](int bodies, long long triangles, long long seed, const std::string& floor,
-             int steps, const std::vector<std::filesystem::path>& meshes) {
+             int steps, const std::vector<std::filesystem::path>& meshes,
+             const std::string& model, bool sleeping) {
             requireRange(bodies, 1, 100000, "bodies");
             requireRange(static_cast<double>(triangles), 12, 1e7, "triangles");
             requireRange(static_cast<double>(seed), 0, 9e18, "seed");
@@ -94,14 +95,23 @@ void bindScene(py::module_& m) {
             spec.floor = floorFrom(floor);
             spec.steps = steps;
             spec.meshes = meshes;
-            return scene::makePileScene(spec);
+            spec.model = model;
+            spec.sleeping = sleeping;
+            try {
+              return scene::makePileScene(spec);
+            } catch (const MeshError& e) {  // an unknown model name: a setting, named
+              throw SettingsError(std::string("model: ") + e.what());
+            }
           },
           py::kw_only(), py::arg("bodies") = 24, py::arg("triangles") = 1500,
           py::arg("seed") = 1, py::arg("floor") = "mesh", py::arg("steps") = 300,
-          py::arg("meshes") = std::vector<std::filesystem::path>{},
+          py::arg("meshes") = std::vector<std::filesystem::path>{}, py::arg("model") = "",
+          py::arg("sleeping") = true,
           "adb-demo's pile: concave bodies (generated tori, gears and knots of about "
-          "`triangles` triangles, or copies of the mesh files `meshes`) dropped into a bin "
-          "whose floor is box meshes ('mesh'), btBoxShape ('box') or a plane ('plane').")
+          "`triangles` triangles, copies of the generated `model` (adb.model's names), or "
+          "copies of the mesh files `meshes`) dropped into a bin whose floor is box meshes "
+          "('mesh'), btBoxShape ('box') or a plane ('plane'). Bodies fall asleep as Bullet's "
+          "deactivation decides unless `sleeping` is False.")
       .def_property_readonly(
           "description", [](const Scene& s) { return s.description; }, "The scene's description.")
       .def_property_readonly("body_names",

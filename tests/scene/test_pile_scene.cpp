@@ -139,6 +139,57 @@ TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
   EXPECT_NEAR(world.bodyPose(1).translation.y(), 0.1, 0.02);
 }
 
+// The same without bounds: a body whose centre falls below the lowest static body (the floor's
+// bottom, y = -0.5) by more than its size (0.35) is lost; one resting on the floor is not.
+TEST(PileScene, ABodyFallingPastTheFloorOfASceneWithoutBoundsIsLost) {
+  const Scene scene = parseScene(R"({
+      "shapes": {"floor": {"type": "box", "half_extents": [1, 0.25, 1]},
+                 "ball": {"type": "sphere", "radius": 0.1}},
+      "bodies": [{"name": "floor", "shape": "floor", "kind": "static", "position": [0, -0.25, 0]},
+                 {"name": "in", "shape": "ball", "position": [0, 0.5, 0]},
+                 {"name": "out", "shape": "ball", "position": [1.5, 0.5, 0]}],
+      "effects": ["dynamics"]})",
+                                 "no_bounds.json");
+  SceneWorld world(scene, Backend::Adb);
+  int firstLost = 0;
+  for (int step = 1; step <= 60; ++step) {
+    if (world.step().lost > 0 && firstLost == 0) firstLost = step;
+  }
+  EXPECT_EQ(world.last().lost, 1);
+  // From y 0.5 to below -0.846: 1.35 m of free fall, 0.52 s, step 32 (Bullet's integration
+  // takes a step or two more).
+  EXPECT_GE(firstLost, 30);
+  EXPECT_LE(firstLost, 36);
+  EXPECT_NEAR(world.bodyPose(1).translation.y(), 0.1, 0.02);
+}
+
+// Bullet's deactivation, on by default in a pile: 27 gear pairs (800 triangles each) in three
+// layers on a plane, with exact contacts, all asleep (measured: from step 826) and still
+// asleep after. Before contacts had identity and persisted, 50 such gears were awake at 600
+// steps (issue 35).
+TEST(PileScene, AGearPileOnAPlaneFallsAsleepWithExactContacts) {
+  PileSpec spec;
+  spec.bodies = 27;
+  spec.model = "gears";
+  spec.trianglesPerBody = 800;
+  spec.floor = PileSpec::Floor::Plane;
+  const Scene scene = makePileScene(spec);
+  ASSERT_TRUE(scene.effects.sleeping);
+  SceneWorld world(scene, Backend::Exact);
+  int allAsleepFrom = 0;
+  for (int step = 1; step <= 1400; ++step) {
+    const StepRecord& r = world.step();
+    ASSERT_EQ(r.lost, 0) << "step " << step;
+    if (r.asleep == spec.bodies) {
+      if (allAsleepFrom == 0) allAsleepFrom = step;
+    } else {
+      allAsleepFrom = 0;
+    }
+  }
+  EXPECT_GT(allAsleepFrom, 0) << world.last().asleep << " of 27 asleep at the end";
+  EXPECT_LE(allAsleepFrom, 1200);
+}
+
 TEST(PileScene, TheConvexBackendTakesItsShapesFromItsMakerOncePerMesh) {
   const Scene scene = makePileScene(smallPile(PileSpec::Floor::Box));
   EXPECT_THROW(SceneWorld(scene, Backend::Convex), std::invalid_argument);

@@ -61,6 +61,16 @@ ShapeSpec binShape(const BinPart& part, PileSpec::Floor floor, bool isFloor) {
 
 std::vector<ShapeSpec> bodyShapes(const PileSpec& spec) {
   std::vector<ShapeSpec> shapes;
+  if (spec.meshes.empty() && !spec.model.empty()) {
+    ShapeSpec s;
+    s.kind = ShapeSpec::Kind::Mesh;
+    s.name = spec.model;
+    // A catalogue model comes at its own size: scaled to the pile's, as a file's is.
+    s.given = std::make_shared<const TriangleMesh>(gen::makeModel(spec.model, spec.trianglesPerBody));
+    s.size = kBodySize;
+    shapes.push_back(std::move(s));
+    return shapes;
+  }
   if (spec.meshes.empty()) {
     for (TriangleMesh& mesh : generatedBodies(spec.trianglesPerBody)) {
       ShapeSpec s;
@@ -99,6 +109,7 @@ Scene makePileScene(const PileSpec& spec) {
   scene.effects.kind = Effects::Kind::Dynamics;
   scene.effects.friction = true;
   scene.effects.softContacts = true;
+  scene.effects.sleeping = spec.sleeping;
   scene.view.given = true;
   // From above the near wall's rim, steep enough to see the floor's middle over it.
   scene.view.eye = Vec3(2.0, 7.5, 4.5);

@@ -57,7 +57,9 @@ std::array<StepCell, kStepColumns> stepCells(const StepRecord& r,
            real("worst_completeness", f.worstCompleteness),
            real("out_of_bounds", r.outOfBounds),
            real("out_of_bounds_relative", r.outOfBoundsRelative), count("threads", f.threads),
-           real("parallel_us", f.parallelMicros)}};
+           real("parallel_us", f.parallelMicros), count("asleep", r.asleep),
+           count("reused_pairs", f.reusedPairs),
+           count("other_reused_pairs", f.otherReusedPairs)}};
 }
 
 std::string effectsName(const Effects& effects) {
@@ -165,6 +167,12 @@ void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
   m_stepMillis.push_back(1e3 * r.seconds);
   m_pairMillis.push_back(1e-3 * r.frame.micros);
   s.atRestAtEnd = r.atRest;
+  s.asleepAtEnd = r.asleep;
+  if (s.dynamicBodies == 0 || r.asleep < s.dynamicBodies) {
+    s.allAsleepFrom = -1;
+  } else if (s.allAsleepFrom < 0) {
+    s.allAsleepFrom = r.step;
+  }
   s.kineticAtEnd = r.kinetic;
   if (s.steps == 1) s.energyAtStart = r.energy;
   s.energyAtEnd = r.energy;
@@ -232,6 +240,8 @@ const RunSummary& Recorder::finish() {
                   {"max_out_of_bounds_relative", s.maxOutOfBoundsRelative},
                   {"out_of_bounds_at_end", s.outOfBoundsAtEnd},
                   {"at_rest_at_end", s.atRestAtEnd},
+                  {"asleep_at_end", s.asleepAtEnd},
+                  {"all_asleep_from", s.allAsleepFrom},
                   {"kinetic_at_end", s.kineticAtEnd},
                   {"energy_at_start", s.energyAtStart},
                   {"energy_at_end", s.energyAtEnd},

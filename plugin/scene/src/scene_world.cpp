@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "adb/bullet/dispatcher.h"
@@ -69,6 +70,7 @@ FrameSettings frameSettings(const Scene& scene, Backend backend) {
   }
   f.fronts = w.fronts;
   f.threads = w.threads;
+  f.keepRestingContacts = w.keepRestingContacts;
   f.softenPlausible = scene.effects.softContacts;
   return f;
 }
@@ -157,6 +159,12 @@ struct SceneWorld::Impl {
   void stepOverlap();
   void stepCollision(double dt);
   void measureBounds(StepRecord& r) const;
+  /// Without world.bounds: the height (along -gravity) of the lowest point of any static
+  /// body, below which a dynamic body is lost; none without static bodies.
+  void findFloor();
+  std::optional<double> floorHeight;
+  Vec3 up = Vec3::UnitY();
+  void measureFall(StepRecord& r) const;
   double time() const { return steps * scene.world.timeStep; }
 };
 
@@ -359,7 +367,11 @@ void SceneWorld::Impl::stepCollision(double dt) {
 // their size: a body resting deep in a floor has its centre above the floor's top), and how
 // far any mesh body's vertex reaches out (into a bin's floor or walls), from the geometry.
 void SceneWorld::Impl::measureBounds(StepRecord& r) const {
-  if (!scene.world.bounds || !dynamics) return;
+  if (!dynamics) return;
+  if (!scene.world.bounds) {
+    measureFall(r);
+    return;
+  }
   const Aabb& bounds = *scene.world.bounds;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (scene.bodies[i].kind != BodySpec::Kind::Dynamic) continue;
@@ -382,6 +394,31 @@ void SceneWorld::Impl::measureBounds(StepRecord& r) const {
   }
 }
 
+void SceneWorld::Impl::findFloor() {
+  const double g = scene.world.gravity.norm();
+  if (g > 0.0 && std::isfinite(g)) up = -scene.world.gravity / g;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (scene.bodies[i].kind != BodySpec::Kind::Static) continue;
+    const Pose pose = toPose(objects[i]->getWorldTransform());
+    for (const Vec3& x : bodyShapes[i].display->vertices()) {
+      const double h = up.dot(pose.apply(x));
+      if (!floorHeight || h < *floorHeight) floorHeight = h;
+    }
+  }
+}
+
+// A scene without bounds: a dynamic body whose centre fell below the lowest static body by
+// more than its size went through the floor (it would otherwise count as present for ever,
+// falling).
+void SceneWorld::Impl::measureFall(StepRecord& r) const {
+  if (!floorHeight) return;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (scene.bodies[i].kind != BodySpec::Kind::Dynamic) continue;
+    const double h = up.dot(toPose(objects[i]->getWorldTransform()).translation);
+    r.lost += h < *floorHeight - bodySize[i] ? 1 : 0;
+  }
+}
+
 SceneWorld::SceneWorld(Scene scene, Backend backend, ConvexShapeMaker convex)
     : m_impl(std::make_unique<Impl>()) {
   if (backend == Backend::Convex && !convex) {
@@ -396,6 +433,7 @@ SceneWorld::SceneWorld(Scene scene, Backend backend, ConvexShapeMaker convex)
   s.motion.assign(s.scene.bodies.size(), nullptr);
   for (const MotionSpec& m : s.scene.motions) s.motion[m.body] = &m;
   for (std::size_t i = 0; i < s.scene.bodies.size(); ++i) s.addBody(i);
+  if (!s.scene.world.bounds) s.findFloor();
   s.report.bodies = static_cast<int>(s.objects.size());
   s.report.triangles = s.shapes->triangles();
   s.report.buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();

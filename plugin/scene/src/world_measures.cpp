@@ -83,6 +83,7 @@ void measureDynamics(const btDiscreteDynamicsWorld& world, const Vec3& gravity,
     record.kinetic += kinetic;
     record.energy += kinetic + potential;
     record.atRest += v.length() < kRestSpeed && w.length() < kRestSpeed ? 1 : 0;
+    record.asleep += body->getActivationState() == ISLAND_SLEEPING ? 1 : 0;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "adb/scene/scene.h"
@@ -26,12 +27,19 @@ struct PileSpec {
   /// Non-empty: the bodies are copies of these files (cycled through), each scaled to 0.8
   /// across; trianglesPerBody is then ignored.
   std::vector<std::filesystem::path> meshes;
+  /// Non-empty (and no meshes): every body is this generated model (adb::makeModel's
+  /// names: pipes, gears, knot, ...) at trianglesPerBody, scaled to 0.8 across. Empty: tori,
+  /// gears and knots in turn.
+  std::string model;
+  /// Bullet's deactivation: bodies at rest fall asleep, as Bullet users have it.
+  bool sleeping = true;
   int steps = 300;
 };
 
 /// The pile: the bin's floor top at y = 0, its inside 5 x 5 (world.bounds: a body out of it
 /// is lost), bodies on a 3 x 3 grid per layer 0.9 apart from 1 above the floor, turned at
-/// random; friction 0.6, no sleeping, plausible contacts softened. Throws std::invalid_argument
+/// random; friction 0.6, Bullet's sleeping (unless spec.sleeping is false), plausible contacts
+/// softened. Throws std::invalid_argument
 /// for a non-positive body count.
 Scene makePileScene(const PileSpec& spec);
 

@@ -45,8 +45,8 @@ struct RunSummary {
   double maxProbedPenetration = -1;  ///< from the geometry (probe), -1 when not probed
   /// Each body's deepest penetration, averaged over the bodies and the probes; -1: no probe.
   double meanProbedPenetration = -1;
-  bool worldBounds = false;          ///< the scene sets world.bounds (the next four apply)
-  int mostLost = 0;                  ///< bodies out of world.bounds, at the worst step
+  bool worldBounds = false;          ///< the scene sets world.bounds (out_of_bounds applies)
+  int mostLost = 0;                  ///< bodies lost (StepRecord::lost), at the worst step
   int lostAtEnd = 0;
   /// StepRecord::outOfBounds: at the worst step (also over the body's size), and at the end.
   double maxOutOfBounds = 0.0;
@@ -54,6 +54,10 @@ struct RunSummary {
   double outOfBoundsAtEnd = 0.0;
   int dynamicBodies = 0;
   int atRestAtEnd = 0;
+  int asleepAtEnd = 0;               ///< bodies Bullet has deactivated, after the last step
+  /// The step from which every dynamic body slept to the end; -1 if they did not all sleep
+  /// at the end.
+  int allAsleepFrom = -1;
   double kineticAtEnd = 0.0;
   double energyAtStart = 0.0;        ///< after the first step
   double energyAtEnd = 0.0;
@@ -68,7 +72,7 @@ struct StepCell {
   double value;
   bool integer;  ///< a count, written without a fraction
 };
-inline constexpr std::size_t kStepColumns = 36;
+inline constexpr std::size_t kStepColumns = 39;
 /// A step's row of steps.csv, column by column, in the file's order (docs/scenes.md says what
 /// each means): the one place the columns are listed, for the file and for the Python
 /// module's World.stats(). `probe`: the step's penetration from the geometry, if measured

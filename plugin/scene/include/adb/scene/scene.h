@@ -36,8 +36,11 @@ struct WorldSpec {
   adb::FrameSettings::Fronts fronts = adb::FrameSettings::Fronts::WithNodePairBudget;
   /// Threads for adb's pair queries (adb::FrameSettings::threads): 0 all, 1 none.
   int threads = 1;
+  /// Pairs at rest keep their contacts (adb::FrameSettings::keepRestingContacts).
+  bool keepRestingContacts = true;
   /// Where dynamic bodies belong (a bin's inside, say): a body whose centre is outside it by
-  /// more than a quarter of its size (its box's diagonal) is lost. None: no body is lost.
+  /// more than a quarter of its size (its box's diagonal) is lost. None: a body is lost when
+  /// its centre falls below the lowest static body by more than its size.
   std::optional<Aabb> bounds;
 };
 

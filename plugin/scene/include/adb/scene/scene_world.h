@@ -128,7 +128,10 @@ struct StepRecord {
   double kinetic = 0.0;           ///< dynamics: kinetic energy of the dynamic bodies, J
   double energy = 0.0;            ///< dynamics: kinetic plus potential (gravity), J
   int atRest = 0;                 ///< dynamics: bodies slower than 0.05 m/s and 0.05 rad/s
-  int lost = 0;                   ///< dynamic bodies out of world.bounds (WorldSpec::bounds)
+  int asleep = 0;                 ///< dynamics: bodies Bullet has deactivated (sleeping)
+  /// Dynamic bodies lost: out of world.bounds (WorldSpec::bounds), or, in a scene without
+  /// bounds, with their centre below the lowest static body by more than their size.
+  int lost = 0;
   /// How far the deepest vertex of a dynamic mesh body reaches out of world.bounds (into a
   /// bin's floor or a wall), from the geometry whatever the contacts say; >= 0. And the same
   /// over that body's size (its box's diagonal), the worst body.
