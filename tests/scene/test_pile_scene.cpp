@@ -116,18 +116,24 @@ TEST(PileScene, AMeshFileIsSizedToItsLargestExtentWhateverItsUnits) {
   EXPECT_THROW(makePileScene(spec), std::invalid_argument);
 }
 
-// A ball dropped beside a floor, with bounds over the floor: lost once its centre is below
-// the bounds by more than a quarter of its size; a ball resting on the floor is not.
-TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
-  const Scene scene = parseScene(R"({
-      "world": {"bounds": {"min": [-1, 0, -1], "max": [1, 5, 1]}},
+// Two balls, one over a floor and one beside it, with or without bounds over the floor.
+Scene ballsBesideAFloor(bool bounds) {
+  const std::string world =
+      bounds ? R"("world": {"bounds": {"min": [-1, 0, -1], "max": [1, 5, 1]}},)" : "";
+  return parseScene("{" + world + R"(
       "shapes": {"floor": {"type": "box", "half_extents": [1, 0.25, 1]},
                  "ball": {"type": "sphere", "radius": 0.1}},
       "bodies": [{"name": "floor", "shape": "floor", "kind": "static", "position": [0, -0.25, 0]},
                  {"name": "in", "shape": "ball", "position": [0, 0.5, 0]},
                  {"name": "out", "shape": "ball", "position": [1.5, 0.5, 0]}],
       "effects": ["dynamics"]})",
-                                 "bounds.json");
+                    bounds ? "bounds.json" : "no_bounds.json");
+}
+
+// A ball dropped beside a floor, with bounds over the floor: lost once its centre is below
+// the bounds by more than a quarter of its size; a ball resting on the floor is not.
+TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
+  const Scene scene = ballsBesideAFloor(true);
   SceneWorld world(scene, Backend::Adb);
   int firstLost = 0;
   for (int step = 1; step <= 60; ++step) {
@@ -142,14 +148,7 @@ TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
 // The same without bounds: a body whose centre falls below the lowest static body (the floor's
 // bottom, y = -0.5) by more than its size (0.35) is lost; one resting on the floor is not.
 TEST(PileScene, ABodyFallingPastTheFloorOfASceneWithoutBoundsIsLost) {
-  const Scene scene = parseScene(R"({
-      "shapes": {"floor": {"type": "box", "half_extents": [1, 0.25, 1]},
-                 "ball": {"type": "sphere", "radius": 0.1}},
-      "bodies": [{"name": "floor", "shape": "floor", "kind": "static", "position": [0, -0.25, 0]},
-                 {"name": "in", "shape": "ball", "position": [0, 0.5, 0]},
-                 {"name": "out", "shape": "ball", "position": [1.5, 0.5, 0]}],
-      "effects": ["dynamics"]})",
-                                 "no_bounds.json");
+  const Scene scene = ballsBesideAFloor(false);
   SceneWorld world(scene, Backend::Adb);
   int firstLost = 0;
   for (int step = 1; step <= 60; ++step) {
