@@ -10,8 +10,8 @@
 namespace adb::scene {
 namespace {
 
-double distance(const double a[3], const btVector3& b) {
-  const double dx = a[0] - b.x(), dy = a[1] - b.y(), dz = a[2] - b.z();
+double distance(const double a[3], const double b[3]) {
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
@@ -42,8 +42,8 @@ ContactTrace::ContactTrace(const std::filesystem::path& folder, double movedOver
   if (!m_churn || !m_resetsFile) {
     throw std::runtime_error("contact trace: cannot write in " + folder.string());
   }
-  m_churn << "step,manifolds,points,kept_id,matched,new,moved,turned,dropped,resets,awake\n";
-  m_resetsFile << "step,body,speed,spin,manifolds,points,kept_id,new,moved,turned,dropped\n";
+  m_churn << "step,pairs,points,kept_id,matched,new,moved,turned,dropped,resets,awake\n";
+  m_resetsFile << "step,body,speed,spin,pairs,points,kept_id,new,moved,turned,dropped\n";
 }
 
 void ContactTrace::record(SceneWorld& world) {
@@ -51,23 +51,17 @@ void ContactTrace::record(SceneWorld& world) {
   if (!dynamics) return;
   const int step = world.last().step;
   btDispatcher& dispatcher = *dynamics->getDispatcher();
+  // Every pair's points, its manifolds together (adb's speculative one, a compound's one per
+  // child pair, GImpact's per part), and the largest breaking threshold among them.
   std::map<PairKey, std::vector<Point>> now;
-  std::map<const void*, ContactChurn> perBody;
-  ContactChurn churn;
-  int manifolds = 0;
-  std::map<const void*, int> manifoldsOf;
+  std::map<PairKey, double> thresholds;
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     const btPersistentManifold& manifold = *dispatcher.getManifoldByIndexInternal(m);
     if (manifold.getNumContacts() == 0) continue;
     const PairKey key{manifold.getBody0(), manifold.getBody1()};
-    // A pair may hold several manifolds (adb's speculative one, GImpact's per part):
-    // their points are taken together.
     std::vector<Point>& points = now[key];
-    const btScalar threshold = manifold.getContactBreakingThreshold();
-    const std::vector<Point>* before = nullptr;
-    if (auto it = m_last.find(key); it != m_last.end()) before = &it->second;
-    std::vector<bool> claimed(before ? before->size() : 0, false);
-    ContactChurn c;
+    double& threshold = thresholds[key];
+    threshold = std::max(threshold, static_cast<double>(manifold.getContactBreakingThreshold()));
     for (int i = 0; i < manifold.getNumContacts(); ++i) {
       const btManifoldPoint& p = manifold.getContactPoint(i);
       Point point{p.m_index0, p.m_index1, {}, {}, {}};
@@ -75,25 +69,35 @@ void ContactTrace::record(SceneWorld& world) {
       store(p.m_positionWorldOnB, point.onB);
       store(p.m_normalWorldOnB, point.normal);
       points.push_back(point);
+    }
+  }
+  std::map<const void*, ContactChurn> perBody;
+  std::map<const void*, int> manifoldsOf;
+  ContactChurn churn;
+  int manifolds = 0;
+  for (const auto& [key, points] : now) {
+    const std::vector<Point>* before = nullptr;
+    if (auto it = m_last.find(key); it != m_last.end()) before = &it->second;
+    std::vector<bool> claimed(before ? before->size() : 0, false);
+    ContactChurn c;
+    for (const Point& p : points) {
       ++c.points;
       int match = -1;
       bool byId = false;
-      if (before) {
-        for (std::size_t k = 0; k < before->size() && hasFeatures(p.m_index0, p.m_index1); ++k) {
-          const Point& old = (*before)[k];
-          if (!claimed[k] && old.index0 == p.m_index0 && old.index1 == p.m_index1) {
-            match = static_cast<int>(k);
-            byId = true;
-            break;
-          }
+      for (std::size_t k = 0; before && k < before->size() && hasFeatures(p.index0, p.index1); ++k) {
+        const Point& old = (*before)[k];
+        if (!claimed[k] && old.index0 == p.index0 && old.index1 == p.index1) {
+          match = static_cast<int>(k);
+          byId = true;
+          break;
         }
-        double best = static_cast<double>(threshold);
-        for (std::size_t k = 0; k < before->size() && match < 0; ++k) {
-          const double d = distance((*before)[k].onB, p.m_positionWorldOnB);
-          if (!claimed[k] && d < best) {
-            best = d;
-            match = static_cast<int>(k);
-          }
+      }
+      double best = thresholds[key];
+      for (std::size_t k = 0; before && k < before->size() && match < 0; ++k) {
+        const double d = distance((*before)[k].onB, p.onB);
+        if (!claimed[k] && d < best) {
+          best = d;
+          match = static_cast<int>(k);
         }
       }
       if (match < 0) {
@@ -104,12 +108,9 @@ void ContactTrace::record(SceneWorld& world) {
       const Point& old = (*before)[static_cast<std::size_t>(match)];
       ++c.matched;
       c.keptId += byId ? 1 : 0;
-      const bool moved = distance(old.onA, p.m_positionWorldOnA) > m_moved ||
-                         distance(old.onB, p.m_positionWorldOnB) > m_moved;
-      c.moved += moved ? 1 : 0;
-      const double cosine = old.normal[0] * p.m_normalWorldOnB.x() +
-                            old.normal[1] * p.m_normalWorldOnB.y() +
-                            old.normal[2] * p.m_normalWorldOnB.z();
+      c.moved += distance(old.onA, p.onA) > m_moved || distance(old.onB, p.onB) > m_moved ? 1 : 0;
+      const double cosine = old.normal[0] * p.normal[0] + old.normal[1] * p.normal[1] +
+                            old.normal[2] * p.normal[2];
       c.turned += cosine < m_turnedCos ? 1 : 0;
     }
     for (bool k : claimed) c.dropped += k ? 0 : 1;

@@ -1,5 +1,5 @@
 // ContactTrace: why a pile does not fall asleep. After each step of a dynamics scene it
-// compares every manifold's points with the step before and notes each body whose
+// compares every pair's contact points (its manifolds together) with the step before and notes each body whose
 // deactivation timer Bullet reset (the body moved faster than its sleeping thresholds):
 //
 // - contact churn, per step: points held, points that kept their identity (the same
@@ -7,7 +7,7 @@
 //   Bullet matches them, the nearest within the breaking threshold), points new, moved over
 //   `movedOver` (1 mm), whose normal turned over `turnedOver` (1 degree), and dropped;
 // - timer resets, per body and step: its speed and spin, and the churn of that step on the
-//   manifolds it is part of.
+//   pairs it is part of.
 //
 // The same measure for every backend (adb, exact contacts, GImpact, convex hulls), read from
 // Bullet's manifolds after the step. Untimed: it is not part of a step's cost.
