@@ -44,8 +44,10 @@ class RunSpec:
         return "-".join(parts)
 
     def command(self, demo: str, out_dir: str) -> List[str]:
+        # --no-sleep: the sweep measures what a budget costs a pile in motion, as its tables
+        # always have; since issue 35 piles sleep as Bullet decides unless told not to.
         cmd = [demo, *self.scene_args, "--backend", self.backend, "--seed", str(self.seed),
-               "--steps", str(self.steps), "--every", "1000000",
+               "--steps", str(self.steps), "--every", "1000000", "--no-sleep",
                "--probe-every", str(self.probe_every), "--out", out_dir]
         if self.kind == "pairs":
             cmd += ["--budget-pairs", str(int(self.budget))]
