@@ -169,6 +169,45 @@ TEST(PrimitiveContact, SmallTriangleOnABoxFaceGivesItsCorners) {
   EXPECT_NEAR(deepest, -0.02, 1e-12);
 }
 
+// A floor 5 cm thick (a box, half height 0.025, top at z = 0.025) and a large flat triangle of
+// a body pressed 3.5 cm into it from above, 70 % of the way through: the nearest face is the
+// floor's underside, and the plain separating axis pushes the body on through it. With the
+// way the body was pushed out last step (up), it is pushed back up, by its full depth.
+TEST(PrimitiveContact, ABodyPressedPastHalfwayIntoAThinBoxIsPushedBackTheWayItCameIn) {
+  OrientedBox floor;
+  floor.half = Vec3(2, 2, 0.025);
+  const Vec3 a(-1, -1, -0.01), b(1, -1, -0.01), c(0, 1, -0.01);
+  PrimitiveContacts plain, hinted;
+  boxTriangleContacts(floor, a, b, c, 0.01, plain);
+  boxTriangleContacts(floor, a, b, c, 0.01, hinted, Vec3(0, 0, 3));  // any length
+  ASSERT_GT(plain.count, 0);
+  ASSERT_GT(hinted.count, 0);
+  for (int i = 0; i < plain.count; ++i) {
+    EXPECT_NEAR(plain.points[i].normal.z(), 1.0, 1e-12);  // triangle to box: pushed down
+    EXPECT_NEAR(plain.points[i].separation, -0.015, 1e-12);
+  }
+  for (int i = 0; i < hinted.count; ++i) {
+    EXPECT_NEAR(hinted.points[i].normal.z(), -1.0, 1e-12);  // pushed back up
+    EXPECT_NEAR(hinted.points[i].separation, -0.035, 1e-12);
+  }
+  // Less than halfway in, the hint changes nothing.
+  PrimitiveContacts shallow, shallowHinted;
+  const Vec3 up(0, 0, 0.03);
+  boxTriangleContacts(floor, a + up, b + up, c + up, 0.01, shallow);
+  boxTriangleContacts(floor, a + up, b + up, c + up, 0.01, shallowHinted, Vec3(0, 0, 1));
+  ASSERT_EQ(shallow.count, shallowHinted.count);
+  for (int i = 0; i < shallow.count; ++i) {
+    EXPECT_EQ(shallow.points[i].normal, shallowHinted.points[i].normal);
+    EXPECT_EQ(shallow.points[i].separation, shallowHinted.points[i].separation);
+  }
+  // A triangle already through (below the underside) is not pulled back up through the
+  // floor: it is apart, with or without the hint.
+  PrimitiveContacts through;
+  const Vec3 down(0, 0, -0.02);
+  boxTriangleContacts(floor, a + down, b + down, c + down, 0.001, through, Vec3(0, 0, 1));
+  EXPECT_EQ(through.count, 0);
+}
+
 TEST(PrimitiveContact, BoxSeparationAgreesWithTheExactOverlapTest) {
   std::mt19937_64 rng(test::kSeed + 2);
   int overlapping = 0, apart = 0;

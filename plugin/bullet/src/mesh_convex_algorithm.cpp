@@ -195,10 +195,26 @@ struct PairFrame {
   double reach;       // triangles within this of the convex shape
   bool finite;        // the convex shape's pose in the mesh's frame is finite
   LocalConvex local;
+  // Box: the way last step's contacts pushed the mesh out of the box, in the mesh's frame
+  // (zero without contacts): boxTriangleContacts keeps to it.
+  Vec3 pushHint = Vec3::Zero();
 };
 
+// The mean of the manifold's contact normals as the direction they push the mesh, in the
+// mesh's frame. Bullet's normal on body 1 points towards body 0.
+Vec3 meshPushHint(const btPersistentManifold* manifold, bool meshIsBody0,
+                  const btTransform& meshPose) {
+  if (!manifold) return Vec3::Zero();
+  btVector3 sum(0, 0, 0);
+  for (int i = 0; i < manifold->getNumContacts(); ++i) {
+    sum += manifold->getContactPoint(i).m_normalWorldOnB;
+  }
+  if (!meshIsBody0) sum = -sum;
+  return fromBt(meshPose.getBasis().transpose() * sum);
+}
+
 PairFrame pairFrame(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                    bool meshIsBody0, double threshold) {
+                    bool meshIsBody0, double threshold, const btPersistentManifold* manifold) {
   PairFrame f;
   f.meshIsBody0 = meshIsBody0;
   f.meshWrap = meshIsBody0 ? body0 : body1;
@@ -214,6 +230,7 @@ PairFrame pairFrame(const btCollisionObjectWrapper* body0, const btCollisionObje
       toPose(f.meshWrap->getWorldTransform().inverseTimes(f.convexWrap->getWorldTransform()));
   f.finite = convexInMesh.rotation.allFinite() && convexInMesh.translation.allFinite();
   if (f.finite) f.local = localConvex(*convex, convexInMesh, f.mesh->tree().origin(), f.reach);
+  f.pushHint = meshPushHint(manifold, meshIsBody0, f.meshWrap->getWorldTransform());
   return f;
 }
 
@@ -248,7 +265,7 @@ std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& s
         capsuleTriangleContacts(local.end0, local.end1, local.radius, a, b, c, f.reach, found);
         break;
       default:
-        boxTriangleContacts(local.box, a, b, c, f.reach, found);
+        boxTriangleContacts(local.box, a, b, c, f.reach, found, f.pushHint);
         break;
     }
     addCandidates(found, meshPose, tree.origin(), f.meshMargin, f.threshold, f.meshIsBody0,
@@ -283,7 +300,8 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
     return work;
   }
   const PairFrame f = pairFrame(body0, body1, !m_swapped,
-                                candidateThreshold(result->m_closestPointDistanceThreshold));
+                                candidateThreshold(result->m_closestPointDistanceThreshold),
+                                manifold);
   if (!f.finite) return 0;
   const std::uint64_t work = generalConvexContacts(*m_dispatcher, f.meshWrap, f.convexWrap,
                                                    f.local, f.reach, f.meshIsBody0, info,
@@ -304,7 +322,10 @@ std::uint64_t MeshConvexAlgorithm::gather(const btCollisionObjectWrapper* body0,
                                           btScalar closestPoints,
                                           detail::ContactSelection& selection) const {
   selection.clear();
-  const PairFrame f = pairFrame(body0, body1, !m_swapped, candidateThreshold(closestPoints));
+  // The manifold was made on the stepping thread before the gathering, and only this pair
+  // writes it, after: read here on whichever thread.
+  const PairFrame f = pairFrame(body0, body1, !m_swapped, candidateThreshold(closestPoints),
+                                existingManifold());
   // A pose too far out for its relative pose to be finite offers nothing (acceptPoses has
   // refused non-finite poses already).
   return f.finite ? closedFormContacts(f, selection) : 0;

@@ -184,17 +184,25 @@ struct BoxAxis {
   int boxAxis = 0, triangleEdge = 0;
 };
 
-// Separation of box and triangle along unit axis l, and the direction it points.
-void testAxis(const Vec3& l, const Vec3& h, const Vec3 v[3], BoxAxis::Kind kind, int boxAxis,
-              int edge, double handicap, BoxAxis& best) {
+// An axis whose cosine with the push hint is above this (about 0.6 degrees from
+// perpendicular) is taken in the hint's orientation only; as triangleContact's hint rule.
+constexpr double kHintCosine = 0.01;
+
+// Separation of box and triangle along unit axis l, and the direction it points (the way
+// the triangle is pushed); `hint` (unit or zero) fixes that direction unless nearly
+// perpendicular to l.
+void testAxis(const Vec3& l, const Vec3& h, const Vec3 v[3], const Vec3& hint,
+              BoxAxis::Kind kind, int boxAxis, int edge, double handicap, BoxAxis& best) {
   const double rb = h.dot(l.cwiseAbs());
   const double t0 = l.dot(v[0]), t1 = l.dot(v[1]), t2 = l.dot(v[2]);
   const double tmin = std::min({t0, t1, t2}), tmax = std::max({t0, t1, t2});
   const double plus = tmin - rb, minus = -tmax - rb;
-  const double separation = std::max(plus, minus);
+  const double along = hint.dot(l);
+  const bool positive = along > kHintCosine ? true : along < -kHintCosine ? false : plus >= minus;
+  const double separation = positive ? plus : minus;
   if (!(separation - handicap > best.separation)) return;
   best.kind = kind;
-  best.normal = plus >= minus ? l : Vec3(-l);
+  best.normal = positive ? l : Vec3(-l);
   best.separation = separation;
   best.boxAxis = boxAxis;
   best.triangleEdge = edge;
@@ -202,15 +210,16 @@ void testAxis(const Vec3& l, const Vec3& h, const Vec3 v[3], BoxAxis::Kind kind,
 
 // The deepest axis; stops early (with that axis) once one separates them beyond `reach`:
 // most triangles near a box are not touching it, and the 9 edge axes cost the most.
-BoxAxis deepestAxis(const Vec3& h, const Vec3 v[3], const Vec3& n, double reach) {
+BoxAxis deepestAxis(const Vec3& h, const Vec3 v[3], const Vec3& n, const Vec3& hint,
+                    double reach) {
   BoxAxis best;
   for (int k = 0; k < 3; ++k) {
-    testAxis(Vec3::Unit(k), h, v, BoxAxis::BoxFace, k, 0, 0.0, best);
+    testAxis(Vec3::Unit(k), h, v, hint, BoxAxis::BoxFace, k, 0, 0.0, best);
     if (best.separation > reach) return best;
   }
   const double nLength = n.norm();
   if (nLength > 0.0) {
-    testAxis(n / nLength, h, v, BoxAxis::TriangleFace, 0, 0, 0.0, best);
+    testAxis(n / nLength, h, v, hint, BoxAxis::TriangleFace, 0, 0, 0.0, best);
     if (best.separation > reach) return best;
   }
   for (int e = 0; e < 3; ++e) {
@@ -222,8 +231,8 @@ BoxAxis deepestAxis(const Vec3& h, const Vec3 v[3], const Vec3& n, double reach)
       // Nearly parallel to a box axis: the direction would be rounding.
       if (!(length > 1e-9 * edgeLength)) continue;
       const Vec3 unit = l / length;
-      testAxis(unit, h, v, BoxAxis::EdgeEdge, k, e, kEdgeHandicap * std::abs(best.separation),
-               best);
+      testAxis(unit, h, v, hint, BoxAxis::EdgeEdge, k, e,
+               kEdgeHandicap * std::abs(best.separation), best);
       if (best.separation > reach) return best;
     }
   }
@@ -334,7 +343,7 @@ Vec3 supportCorner(const Vec3& h, const Vec3& d) {
 }  // namespace
 
 void boxTriangleContacts(const OrientedBox& box, const Vec3& a, const Vec3& b, const Vec3& c,
-                         double reach, PrimitiveContacts& out) {
+                         double reach, PrimitiveContacts& out, const Vec3& pushHint) {
   // In the box's frame the box is [-half, half].
   const Mat3 toBox = box.axes.transpose();
   const Vec3 v[3] = {toBox * (a - box.centre), toBox * (b - box.centre), toBox * (c - box.centre)};
@@ -342,7 +351,20 @@ void boxTriangleContacts(const OrientedBox& box, const Vec3& a, const Vec3& b, c
   const Vec3 h = box.half;
   if (!h.allFinite() || (h.array() < 0.0).any()) return;
   const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
-  const BoxAxis axis = deepestAxis(h, v, n, reach);
+  // The hint in the box's frame, unit (zero when none or not finite).
+  Vec3 hint = toBox * pushHint;
+  const double hintLength = hint.norm();
+  hint = hintLength > 0.0 && std::isfinite(hintLength) ? Vec3(hint / hintLength) : Vec3::Zero();
+  BoxAxis axis = deepestAxis(h, v, n, Vec3::Zero(), reach);
+  // The plain axis pushes the triangle against the way its body was pushed out last step:
+  // the body went more than halfway into a thin box. Pushed back out the way it came in
+  // while it is not through (its depth that way is less than the box is thick there); a
+  // triangle at the far side of a hole the box sits in is farther than that, and keeps the
+  // plain axis.
+  if (axis.normal.dot(hint) < -kHintCosine) {
+    const BoxAxis back = deepestAxis(h, v, n, hint, reach);
+    if (-back.separation < 2.0 * h.dot(back.normal.cwiseAbs())) axis = back;
+  }
   if (!(axis.separation <= reach)) return;
   PrimitiveContacts local;
   if (axis.kind == BoxAxis::TriangleFace) {

@@ -58,7 +58,16 @@ void capsuleTriangleContacts(const Vec3& p0, const Vec3& p1, double radius, cons
 /// normal; contacts are the corners of the box's face clipped to the triangle (triangle
 /// face axis), of the triangle clipped to the box's face (box face axis), or the two edges'
 /// closest points (edge-edge); the deepest 4 within reach.
+///
+/// `pushHint`, in the frame of the triangle and `box` (any length; zero for none): the
+/// direction the triangle's body was pushed out of the box last step. Where the deepest axis
+/// would push the triangle against it, the axes are tried again, each only in the
+/// orientation that agrees with the hint (unless within about 0.6 degrees of perpendicular
+/// to it), and that answer is taken while the triangle is less deep that way than the box is
+/// thick: a body pressed more than halfway into a thin box (a floor) is pushed back out
+/// through the face it came in by, not on through the other one.
 void boxTriangleContacts(const OrientedBox& box, const Vec3& a, const Vec3& b, const Vec3& c,
-                         double reach, PrimitiveContacts& out);
+                         double reach, PrimitiveContacts& out,
+                         const Vec3& pushHint = Vec3::Zero());
 
 }  // namespace adb
