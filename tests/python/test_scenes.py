@@ -136,6 +136,21 @@ def test_the_pile_made_in_code():
         adb.Scene.pile(floor="sand")
 
 
+def test_a_pile_of_one_model_sleeps_unless_told_not_to():
+    for sleeping in (True, False):
+        scene = adb.Scene.pile(bodies=3, triangles=200, model="gears", floor="plane", steps=5,
+                               sleeping=sleeping)
+        world = adb.World(scene, backend="exact")
+        world.step(5)
+        summary = world.summary()
+        assert summary["asleep_at_end"] == 0  # falling: nobody sleeps yet
+        assert summary["all_asleep_from"] == -1
+        assert summary["lost_at_end"] == 0
+        assert "+sleeping" in summary["effects"] if sleeping else "+sleeping" not in summary["effects"]
+    with pytest.raises(adb.SettingsError, match="model"):
+        adb.Scene.pile(model="teapot")
+
+
 def test_a_dict_may_hold_numpy_values():
     scene = dict(SMALL_SCENE, bodies=[dict(b) for b in SMALL_SCENE["bodies"]])
     scene["bodies"][1]["position"] = np.array([0.0, 0.7, 0.0])

@@ -130,15 +130,20 @@ Scene ballsBesideAFloor(bool bounds) {
                     bounds ? "bounds.json" : "no_bounds.json");
 }
 
+// Steps `world` `steps` times; the first step after which a body was lost (0: none).
+int firstStepLost(SceneWorld& world, int steps) {
+  int first = 0;
+  for (int step = 1; step <= steps; ++step) {
+    if (world.step().lost > 0 && first == 0) first = step;
+  }
+  return first;
+}
+
 // A ball dropped beside a floor, with bounds over the floor: lost once its centre is below
 // the bounds by more than a quarter of its size; a ball resting on the floor is not.
 TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
-  const Scene scene = ballsBesideAFloor(true);
-  SceneWorld world(scene, Backend::Adb);
-  int firstLost = 0;
-  for (int step = 1; step <= 60; ++step) {
-    if (world.step().lost > 0 && firstLost == 0) firstLost = step;
-  }
+  SceneWorld world(ballsBesideAFloor(true), Backend::Adb);
+  const int firstLost = firstStepLost(world, 60);
   EXPECT_EQ(world.last().lost, 1);  // "out" fell beside the floor; "in" rests on it
   // Out on x from the start by 0.5, more than a quarter of the ball's box diagonal (0.087).
   EXPECT_EQ(firstLost, 1);
@@ -148,12 +153,8 @@ TEST(PileScene, ABodyOutOfTheBoundsByAQuarterOfItsSizeIsLost) {
 // The same without bounds: a body whose centre falls below the lowest static body (the floor's
 // bottom, y = -0.5) by more than its size (0.35) is lost; one resting on the floor is not.
 TEST(PileScene, ABodyFallingPastTheFloorOfASceneWithoutBoundsIsLost) {
-  const Scene scene = ballsBesideAFloor(false);
-  SceneWorld world(scene, Backend::Adb);
-  int firstLost = 0;
-  for (int step = 1; step <= 60; ++step) {
-    if (world.step().lost > 0 && firstLost == 0) firstLost = step;
-  }
+  SceneWorld world(ballsBesideAFloor(false), Backend::Adb);
+  const int firstLost = firstStepLost(world, 60);
   EXPECT_EQ(world.last().lost, 1);
   // From y 0.5 to below -0.846: 1.35 m of free fall, 0.52 s, step 32 (Bullet's integration
   // takes a step or two more).

@@ -21,14 +21,14 @@ bool deeper(const PendingContact& x, const PendingContact& y) {
 
 }  // namespace
 
-std::size_t reduceContacts(ContactPoints& points, const btPersistentManifold& previous) {
+void reduceContacts(ContactPoints& points, const btPersistentManifold& previous) {
   const btScalar threshold = previous.getContactBreakingThreshold();
   // The manifold's candidates first, [0, candidates), the speculative ones after.
   const auto speculative = std::partition(points.begin(), points.end(), [&](const PendingContact& c) {
     return c.distance <= threshold;
   });
   const int candidates = static_cast<int>(speculative - points.begin());
-  if (candidates == 0) return points.size();
+  if (candidates == 0) return;
   std::sort(points.begin(), speculative, deeper);
   // nearest[i]: squared distance on A from candidate i to the nearest point chosen so far.
   // Chosen points are swapped into [0, chosen).
@@ -72,7 +72,6 @@ std::size_t reduceContacts(ContactPoints& points, const btPersistentManifold& pr
   // Keep [0, chosen) and the speculative points.
   const auto kept = std::move(speculative, points.end(), points.begin() + chosen);
   points.erase(kept, points.end());
-  return points.size();
 }
 
 }  // namespace adb::detail

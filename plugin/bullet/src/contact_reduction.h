@@ -28,7 +28,7 @@ constexpr int kManifoldPoints = 4;
 
 /// Reorders `points` so that the ones chosen for `previous` (the pair's manifold, before this
 /// step's points) come first in the order they were chosen, followed by the speculative ones,
-/// and drops the rest. Returns the number of points kept.
-std::size_t reduceContacts(ContactPoints& points, const btPersistentManifold& previous);
+/// and drops the rest.
+void reduceContacts(ContactPoints& points, const btPersistentManifold& previous);
 
 }  // namespace adb::detail

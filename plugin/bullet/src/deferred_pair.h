@@ -37,9 +37,10 @@ struct DeferredPair {
   double confidence = 0.0;     // see FrameStats::meanConfidence
   double completeness = 0.0;   // see FrameStats::meanCompleteness: the refinement's order
   StopReason stop = StopReason::Completed;
-  bool written = false;        // its contacts are in its manifold
+  // Its contacts are in its manifold. Set before the first pass only for a pair that kept
+  // them (FrameScheduler::keepRestingContacts): such a pair waits for nothing this step.
+  bool written = false;
   bool resting = false;        // a whole pair left out of the first pass: its mesh barely moved
-  bool reused = false;         // kept its contacts without colliding: its bodies are at rest
   // A whole pair whose contacts were gathered on the pool this step: its index in the
   // scheduler's gathered contacts; -1 otherwise.
   std::int32_t gathered = -1;

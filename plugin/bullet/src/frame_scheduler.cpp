@@ -40,9 +40,6 @@ std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) {
 // runs regardless: two kept steps hold a resting body; a budget smaller than one pair
 // overruns by that pair every third step rather than letting the body fall.
 constexpr std::uint64_t kMaxSkippedSteps = 2;
-// A pair with the world whose mesh moved less than this fraction of its contact breaking
-// threshold since it last ran may keep its contacts under a binding budget.
-constexpr btScalar kRestingMotion = btScalar(0.25);
 // A quality target needs the paper's best-first traversal; contacts alone are found faster
 // depth first (docs/bullet-budget.md).
 bool bestFirst(const FrameSettings& s) { return s.kMin > 0; }
@@ -278,13 +275,14 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
   if (unbudgeted(settings)) return false;
   std::uint64_t units = 0;
   double micros = 0.0;
+  // Pairs written already kept their contacts: they cost nothing.
   for (const DeferredPair& p : m_wholes) {
-    if (p.reused) continue;
+    if (p.written) continue;
     units += expectedCost(p.algorithm->lastWork(), kFirstWholeWork);
     micros += m_costs.expectedWholeMicros(*p.algorithm);
   }
   for (const DeferredPair& p : m_pairs) {
-    if (p.reused) continue;
+    if (p.written) continue;
     const std::uint64_t cost = expectedCost(p.meshMesh().needed(), kFirstGrant);
     units += cost;
     micros += static_cast<double>(cost) * m_costs.microsPerNodePair() + m_costs.writeMicros();
@@ -302,15 +300,14 @@ bool FrameScheduler::binding(const FrameSettings& settings) const {
 // floor got 0.3 % of a quarter budget, wrote no contacts, and the pile sank through itself
 // and the floor (docs/bullet-results.md).
 void FrameScheduler::firstPass(const FrameSettings& settings) {
-  // Pairs that kept their contacts (keepRestingContacts) wait for nothing.
+  // Pairs written already (they kept their contacts: keepRestingContacts) wait for nothing.
   std::uint64_t anchoredPairs = 0, all = 0;
-  for (const DeferredPair& p : m_pairs) {
-    anchoredPairs += !p.reused && anchored(p) ? 1 : 0;
-    all += p.reused ? 0 : 1;
-  }
-  for (const DeferredPair& p : m_wholes) {
-    anchoredPairs += !p.reused && anchored(p) ? 1 : 0;
-    all += p.reused ? 0 : 1;
+  for (const std::vector<DeferredPair>* pairs : {&m_pairs, &m_wholes}) {
+    for (const DeferredPair& p : *pairs) {
+      if (p.written) continue;
+      anchoredPairs += anchored(p) ? 1 : 0;
+      ++all;
+    }
   }
   for (bool group : {true, false}) {
     std::uint64_t waiting = group ? anchoredPairs : all - anchoredPairs;
@@ -319,12 +316,11 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
     // others their share; a pair that does not fit is left for the refinement, and if it
     // does not run this step it keeps its last contacts.
     for (DeferredPair& pair : m_wholes) {
-      if (pair.reused || anchored(pair) != group) continue;
+      if (pair.written || anchored(pair) != group) continue;
       // Under a budget too small for every pair, a pair with the world whose mesh has
       // barely moved since it last ran keeps its contacts (refreshed for the new poses):
       // they are as good as new, and its cost goes to the pairs that changed.
-      if (group && m_binding &&
-          pair.motion < kRestingMotion * pair.algorithm->breakingThreshold()) {
+      if (group && m_binding && pair.algorithm->barelyMoved(pair.motion)) {
         pair.resting = true;
         --waiting;
         continue;
@@ -361,7 +357,7 @@ void FrameScheduler::firstQueries(bool group, std::uint64_t waiting,
     std::uint64_t reserved = 0;
     for (; next < m_pairs.size() && m_batch.size() < roundPairs; ++next) {
       const DeferredPair& pair = m_pairs[next];
-      if (pair.reused || anchored(pair) != group) continue;
+      if (pair.written || anchored(pair) != group) continue;
       const std::uint64_t wanted = firstWanted(pair);
       const std::uint64_t grant = std::min(wanted, share(settings, waiting, reserved, micros));
       reserved = saturatingAdd(reserved, grant);
@@ -502,7 +498,7 @@ void FrameScheduler::gatherWholes(const FrameSettings& settings) {
   // Under any budget a whole pair may not run at all, and on one thread nothing is gained.
   if (m_pool.threads() == 1 || !unbudgeted(settings)) return;
   for (DeferredPair& pair : m_wholes) {
-    if (pair.reused) continue;
+    if (pair.written) continue;  // it kept its contacts
     PairWrappers wrappers(pair);
     if (!pair.algorithm->gathersOffThread(&wrappers.body0, &wrappers.body1)) continue;
     pair.algorithm->prepareGather(&wrappers.body0, &wrappers.body1);  // Bullet's state: here
@@ -540,18 +536,20 @@ void FrameScheduler::keepSkipped() {
 // budget cut is not kept: its contacts were not all made. Decided before the budget is
 // spent, from the poses alone, so that node-pair budgets stay reproducible and a budget
 // never reached changes nothing.
+// Until the first pass, a pair is written only if it kept its contacts here.
 void FrameScheduler::keepRestingContacts() {
+  const auto keep = [](DeferredPair& pair) {
+    const PairWrappers wrappers(pair);
+    pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
+    pair.written = true;
+  };
   for (DeferredPair& pair : m_pairs) {
     MeshMeshAlgorithm& algorithm = pair.meshMesh();
-    if (algorithm.cut()) continue;
-    if (!algorithm.contactsStillHold(
-            algorithm.motionSinceLastRun(pair.transform0, pair.transform1))) {
+    if (algorithm.cut() || !algorithm.contactsStillHold(algorithm.motionSinceLastRun(
+                               pair.transform0, pair.transform1))) {
       continue;
     }
-    PairWrappers wrappers(pair);
-    algorithm.keepLastContacts(&wrappers.body0, &wrappers.body1);
-    pair.written = true;
-    pair.reused = true;
+    keep(pair);
     pair.confidence = 1.0;
     pair.completeness = 1.0;
     --m_unqueried;
@@ -559,10 +557,7 @@ void FrameScheduler::keepRestingContacts() {
   }
   for (DeferredPair& pair : m_wholes) {
     if (!pair.algorithm->contactsStillHold(pair.motion)) continue;
-    PairWrappers wrappers(pair);
-    pair.algorithm->keepLastContacts(&wrappers.body0, &wrappers.body1);
-    pair.written = true;
-    pair.reused = true;
+    keep(pair);
     ++m_stats.otherReusedPairs;
   }
 }

@@ -91,13 +91,18 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// since the last collideScheduled (infinite if it never ran), for the wrappers' world
   /// transforms: a skipped pair's kept contacts stay true while it is small.
   btScalar motionSinceLastRun(const btTransform& transform0, const btTransform& transform1) const;
+  /// Whether `motion` (motionSinceLastRun() for the step's poses) is small enough for the
+  /// pair's last contacts, re-measured at the new poses, to be still where the surfaces
+  /// meet: less than kRestingMotion of the breaking threshold.
+  bool barelyMoved(btScalar motion) const;
   /// Whether the pair may keep its contacts this step instead of colliding again: they were
-  /// made when the pair last ran, its manifold still holds some, the mesh moved less than
-  /// kReuseMotion of the breaking threshold against the other body since (the contacts'
-  /// anchors, re-measured at the new poses, are then still where the surfaces meet), and
-  /// neither body is fast enough for speculative contacts. `motion` is
-  /// motionSinceLastRun() for the step's poses.
+  /// made when the pair last ran, its manifold still holds some, it barelyMoved(motion),
+  /// and neither body is fast enough for speculative contacts.
   bool contactsStillHold(btScalar motion) const;
+  /// The sum of the contact normals the pair's manifold holds (Bullet's normal on body 1,
+  /// pointing towards body 0); zero before its first contacts. Read on any thread before
+  /// the pair writes its contacts: only the pair writes its manifold.
+  btVector3 lastNormalsOnB() const;
   /// Notes that the pair's contacts were made now, for bodies posed as `body0` and `body1`:
   /// what motionSinceLastRun() measures from. The scheduler's, for mesh-mesh pairs.
   void noteContactsMade(const btCollisionObjectWrapper* body0,

@@ -200,21 +200,11 @@ struct PairFrame {
   Vec3 pushHint = Vec3::Zero();
 };
 
-// The mean of the manifold's contact normals as the direction they push the mesh, in the
-// mesh's frame. Bullet's normal on body 1 points towards body 0.
-Vec3 meshPushHint(const btPersistentManifold* manifold, bool meshIsBody0,
-                  const btTransform& meshPose) {
-  if (!manifold) return Vec3::Zero();
-  btVector3 sum(0, 0, 0);
-  for (int i = 0; i < manifold->getNumContacts(); ++i) {
-    sum += manifold->getContactPoint(i).m_normalWorldOnB;
-  }
-  if (!meshIsBody0) sum = -sum;
-  return fromBt(meshPose.getBasis().transpose() * sum);
-}
-
+// PairFrame's pushHint: the last contacts' normals (ManifoldAlgorithm::lastNormalsOnB) as the
+// direction they pushed the mesh, in the mesh's frame. Bullet's normal on body 1 points
+// towards body 0.
 PairFrame pairFrame(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                    bool meshIsBody0, double threshold, const btPersistentManifold* manifold) {
+                    bool meshIsBody0, double threshold, const btVector3& lastNormalsOnB) {
   PairFrame f;
   f.meshIsBody0 = meshIsBody0;
   f.meshWrap = meshIsBody0 ? body0 : body1;
@@ -230,7 +220,8 @@ PairFrame pairFrame(const btCollisionObjectWrapper* body0, const btCollisionObje
       toPose(f.meshWrap->getWorldTransform().inverseTimes(f.convexWrap->getWorldTransform()));
   f.finite = convexInMesh.rotation.allFinite() && convexInMesh.translation.allFinite();
   if (f.finite) f.local = localConvex(*convex, convexInMesh, f.mesh->tree().origin(), f.reach);
-  f.pushHint = meshPushHint(manifold, meshIsBody0, f.meshWrap->getWorldTransform());
+  const btVector3 push = meshIsBody0 ? lastNormalsOnB : -lastNormalsOnB;
+  f.pushHint = fromBt(f.meshWrap->getWorldTransform().getBasis().transpose() * push);
   return f;
 }
 
@@ -301,7 +292,7 @@ std::uint64_t MeshConvexAlgorithm::collideNow(const btCollisionObjectWrapper* bo
   }
   const PairFrame f = pairFrame(body0, body1, !m_swapped,
                                 candidateThreshold(result->m_closestPointDistanceThreshold),
-                                manifold);
+                                lastNormalsOnB());
   if (!f.finite) return 0;
   const std::uint64_t work = generalConvexContacts(*m_dispatcher, f.meshWrap, f.convexWrap,
                                                    f.local, f.reach, f.meshIsBody0, info,
@@ -322,10 +313,8 @@ std::uint64_t MeshConvexAlgorithm::gather(const btCollisionObjectWrapper* body0,
                                           btScalar closestPoints,
                                           detail::ContactSelection& selection) const {
   selection.clear();
-  // The manifold was made on the stepping thread before the gathering, and only this pair
-  // writes it, after: read here on whichever thread.
   const PairFrame f = pairFrame(body0, body1, !m_swapped, candidateThreshold(closestPoints),
-                                existingManifold());
+                                lastNormalsOnB());
   // A pose too far out for its relative pose to be finite offers nothing (acceptPoses has
   // refused non-finite poses already).
   return f.finite ? closedFormContacts(f, selection) : 0;

@@ -157,7 +157,7 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
                                 toPose(transform1), mesh0.data().facing, mesh1.data().facing};
   // The manifold was made when Bullet dispatched the pair, and only this pair writes it: read
   // here, on whichever thread, before this step's points are written.
-  const Vec3 hint = detail::separationHint(existingManifold(), boxCentre(shape0, transform0),
+  const Vec3 hint = detail::separationHint(lastNormalsOnB(), boxCentre(shape0, transform0),
                                            boxCentre(shape1, transform1));
   m_points.clear();
   m_pointCount = ContactCount{};

@@ -126,15 +126,10 @@ bool addNearContact(const PosedPair& pair, const Vec3 a[3], const Vec3 b[3],
 
 }  // namespace
 
-Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCentre0,
+Vec3 separationHint(const btVector3& lastNormalsOnB, const btVector3& boxCentre0,
                     const btVector3& boxCentre1) {
-  Vec3 sum = Vec3::Zero();
-  if (manifold) {
-    // Bullet's normal on B points from body 1 towards body 0: the hint is its opposite.
-    for (int i = 0; i < manifold->getNumContacts(); ++i) {
-      sum -= fromBt(manifold->getContactPoint(i).m_normalWorldOnB);
-    }
-  }
+  // Bullet's normal on B points from body 1 towards body 0: the hint is its opposite.
+  const Vec3 sum = -fromBt(lastNormalsOnB);
   if (sum.squaredNorm() > 0.0 && sum.allFinite()) return sum;
   return fromBt(boxCentre1 - boxCentre0);
 }

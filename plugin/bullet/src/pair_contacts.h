@@ -60,10 +60,11 @@ using ContactPoints = std::vector<PendingContact>;
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
                         btPersistentManifold& manifold, int partId0, int partId1);
 
-/// The preferred separation direction from body 0 towards body 1 for this step: the last
-/// step's contact normals when the manifold has points (warm starting: resting contact keeps
-/// its normal), else the direction between the two world boxes' centres.
-Vec3 separationHint(const btPersistentManifold* manifold, const btVector3& boxCentre0,
+/// The preferred separation direction from body 0 towards body 1 for this step: against the
+/// last step's contact normals on body 1 (`lastNormalsOnB`, their sum; warm starting:
+/// resting contact keeps its normal), else, without them, the direction between the two
+/// world boxes' centres.
+Vec3 separationHint(const btVector3& lastNormalsOnB, const btVector3& boxCentre0,
                     const btVector3& boxCentre1);
 
 /// One contact per intersecting triangle pair among `witnesses` (node-only witnesses are

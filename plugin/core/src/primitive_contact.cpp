@@ -351,19 +351,19 @@ void boxTriangleContacts(const OrientedBox& box, const Vec3& a, const Vec3& b, c
   const Vec3 h = box.half;
   if (!h.allFinite() || (h.array() < 0.0).any()) return;
   const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
-  // The hint in the box's frame, unit (zero when none or not finite).
-  Vec3 hint = toBox * pushHint;
-  const double hintLength = hint.norm();
-  hint = hintLength > 0.0 && std::isfinite(hintLength) ? Vec3(hint / hintLength) : Vec3::Zero();
   BoxAxis axis = deepestAxis(h, v, n, Vec3::Zero(), reach);
   // The plain axis pushes the triangle against the way its body was pushed out last step:
   // the body went more than halfway into a thin box. Pushed back out the way it came in
   // while it is not through (its depth that way is less than the box is thick there); a
   // triangle at the far side of a hole the box sits in is farther than that, and keeps the
-  // plain axis.
-  if (axis.normal.dot(hint) < -kHintCosine) {
-    const BoxAxis back = deepestAxis(h, v, n, hint, reach);
-    if (-back.separation < 2.0 * h.dot(back.normal.cwiseAbs())) axis = back;
+  // plain axis. The hint is made unit only then: most triangles agree with it.
+  const Vec3 hint = toBox * pushHint;
+  if (axis.normal.dot(hint) < 0.0) {
+    const Vec3 unit = hint / hint.norm();  // not zero: the dot product is negative
+    if (unit.allFinite() && axis.normal.dot(unit) < -kHintCosine) {
+      const BoxAxis back = deepestAxis(h, v, n, unit, reach);
+      if (-back.separation < 2.0 * h.dot(back.normal.cwiseAbs())) axis = back;
+    }
   }
   if (!(axis.separation <= reach)) return;
   PrimitiveContacts local;

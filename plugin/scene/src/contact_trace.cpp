@@ -46,113 +46,128 @@ ContactTrace::ContactTrace(const std::filesystem::path& folder, double movedOver
   m_resetsFile << "step,body,speed,spin,pairs,points,kept_id,new,moved,turned,dropped\n";
 }
 
-void ContactTrace::record(SceneWorld& world) {
-  btDiscreteDynamicsWorld* dynamics = world.dynamicsWorld();
-  if (!dynamics) return;
-  const int step = world.last().step;
-  btDispatcher& dispatcher = *dynamics->getDispatcher();
-  // Every pair's points, its manifolds together (adb's speculative one, a compound's one per
-  // child pair, GImpact's per part), and the largest breaking threshold among them.
-  std::map<PairKey, std::vector<Point>> now;
-  std::map<PairKey, double> thresholds;
+// Every body pair's points, its manifolds together (adb's speculative one, a compound's one
+// per child pair, GImpact's per part).
+ContactTrace::Pairs ContactTrace::pairsOf(btDispatcher& dispatcher) {
+  Pairs pairs;
   for (int m = 0; m < dispatcher.getNumManifolds(); ++m) {
     const btPersistentManifold& manifold = *dispatcher.getManifoldByIndexInternal(m);
     if (manifold.getNumContacts() == 0) continue;
-    const PairKey key{manifold.getBody0(), manifold.getBody1()};
-    std::vector<Point>& points = now[key];
-    double& threshold = thresholds[key];
-    threshold = std::max(threshold, static_cast<double>(manifold.getContactBreakingThreshold()));
+    PairPoints& pair = pairs[PairKey{manifold.getBody0(), manifold.getBody1()}];
+    pair.threshold =
+        std::max(pair.threshold, static_cast<double>(manifold.getContactBreakingThreshold()));
     for (int i = 0; i < manifold.getNumContacts(); ++i) {
       const btManifoldPoint& p = manifold.getContactPoint(i);
       Point point{p.m_index0, p.m_index1, {}, {}, {}};
       store(p.m_positionWorldOnA, point.onA);
       store(p.m_positionWorldOnB, point.onB);
       store(p.m_normalWorldOnB, point.normal);
-      points.push_back(point);
+      pair.points.push_back(point);
     }
   }
-  std::map<const void*, ContactChurn> perBody;
-  std::map<const void*, int> manifoldsOf;
-  ContactChurn churn;
-  int manifolds = 0;
-  for (const auto& [key, points] : now) {
-    const std::vector<Point>* before = nullptr;
-    if (auto it = m_last.find(key); it != m_last.end()) before = &it->second;
-    std::vector<bool> claimed(before ? before->size() : 0, false);
-    ContactChurn c;
-    for (const Point& p : points) {
-      ++c.points;
-      int match = -1;
-      bool byId = false;
-      for (std::size_t k = 0; before && k < before->size() && hasFeatures(p.index0, p.index1); ++k) {
-        const Point& old = (*before)[k];
-        if (!claimed[k] && old.index0 == p.index0 && old.index1 == p.index1) {
-          match = static_cast<int>(k);
-          byId = true;
-          break;
-        }
+  return pairs;
+}
+
+// Each point matched to last step's by its features, else (points without features) as Bullet
+// matches them: the nearest unclaimed one within the breaking threshold.
+ContactChurn ContactTrace::compare(const PairPoints& now, const PairPoints* before) const {
+  ContactChurn c;
+  const std::size_t count = before ? before->points.size() : 0;
+  std::vector<bool> claimed(count, false);
+  for (const Point& p : now.points) {
+    ++c.points;
+    int match = -1;
+    bool byId = false;
+    for (std::size_t k = 0; k < count && hasFeatures(p.index0, p.index1); ++k) {
+      const Point& old = before->points[k];
+      if (!claimed[k] && old.index0 == p.index0 && old.index1 == p.index1) {
+        match = static_cast<int>(k);
+        byId = true;
+        break;
       }
-      double best = thresholds[key];
-      for (std::size_t k = 0; before && k < before->size() && match < 0; ++k) {
-        const double d = distance((*before)[k].onB, p.onB);
-        if (!claimed[k] && d < best) {
-          best = d;
-          match = static_cast<int>(k);
-        }
-      }
-      if (match < 0) {
-        ++c.fresh;
-        continue;
-      }
-      claimed[static_cast<std::size_t>(match)] = true;
-      const Point& old = (*before)[static_cast<std::size_t>(match)];
-      ++c.matched;
-      c.keptId += byId ? 1 : 0;
-      c.moved += distance(old.onA, p.onA) > m_moved || distance(old.onB, p.onB) > m_moved ? 1 : 0;
-      const double cosine = old.normal[0] * p.normal[0] + old.normal[1] * p.normal[1] +
-                            old.normal[2] * p.normal[2];
-      c.turned += cosine < m_turnedCos ? 1 : 0;
     }
-    for (bool k : claimed) c.dropped += k ? 0 : 1;
-    ++manifolds;
-    churn.add(c);
-    for (const void* body : {key.first, key.second}) {
-      perBody[body].add(c);
-      ++manifoldsOf[body];
+    double best = now.threshold;
+    for (std::size_t k = 0; k < count && !byId; ++k) {
+      const double d = distance(before->points[k].onB, p.onB);
+      if (!claimed[k] && d < best) {
+        best = d;
+        match = static_cast<int>(k);
+      }
     }
+    if (match < 0) {
+      ++c.fresh;
+      continue;
+    }
+    claimed[static_cast<std::size_t>(match)] = true;
+    const Point& old = before->points[static_cast<std::size_t>(match)];
+    ++c.matched;
+    c.keptId += byId ? 1 : 0;
+    c.moved += distance(old.onA, p.onA) > m_moved || distance(old.onB, p.onB) > m_moved ? 1 : 0;
+    const double cosine =
+        old.normal[0] * p.normal[0] + old.normal[1] * p.normal[1] + old.normal[2] * p.normal[2];
+    c.turned += cosine < m_turnedCos ? 1 : 0;
   }
-  // Manifolds that held points last step and none now dropped them all.
-  for (const auto& [key, points] : m_last) {
-    if (now.count(key)) continue;
-    ContactChurn c;
-    c.dropped = static_cast<std::uint32_t>(points.size());
-    churn.add(c);
-    perBody[key.first].add(c);
-    perBody[key.second].add(c);
-  }
-  // Bodies whose deactivation timer went back: Bullet found them over their thresholds.
-  int resets = 0, awake = 0;
-  const btCollisionObjectArray& objects = dynamics->getCollisionObjectArray();
+  for (bool k : claimed) c.dropped += k ? 0 : 1;
+  return c;
+}
+
+// Bodies whose deactivation timer went back: Bullet found them over their thresholds.
+int ContactTrace::writeResets(btDiscreteDynamicsWorld& dynamics, int step,
+                              std::map<const void*, BodyChurn>& bodies, int& awake) {
+  int resets = 0;
+  awake = 0;
+  const btCollisionObjectArray& objects = dynamics.getCollisionObjectArray();
   for (int i = 0; i < objects.size(); ++i) {
     const btRigidBody* body = btRigidBody::upcast(objects[i]);
     if (!body || body->getInvMass() == 0) continue;
-    awake += body->getActivationState() == ISLAND_SLEEPING ? 0 : 1;
+    const bool asleep = body->getActivationState() == ISLAND_SLEEPING;
+    awake += asleep ? 0 : 1;
     const double timer = static_cast<double>(body->getDeactivationTime());
     double& last = m_timers[body];
-    const bool reset = timer < last && body->getActivationState() != ISLAND_SLEEPING;
+    const bool reset = timer < last && !asleep;
     last = timer;
     if (!reset) continue;
     ++resets;
-    const ContactChurn& c = perBody[body];
+    const BodyChurn& b = bodies[body];
     m_resetsFile << step << ',' << body->getUserIndex() << ','
                  << body->getLinearVelocity().length() << ','
-                 << body->getAngularVelocity().length() << ',' << manifoldsOf[body] << ','
-                 << c.points << ',' << c.keptId << ',' << c.fresh << ',' << c.moved << ','
-                 << c.turned << ',' << c.dropped << '\n';
+                 << body->getAngularVelocity().length() << ',' << b.pairs << ','
+                 << b.churn.points << ',' << b.churn.keptId << ',' << b.churn.fresh << ','
+                 << b.churn.moved << ',' << b.churn.turned << ',' << b.churn.dropped << '\n';
   }
+  return resets;
+}
+
+void ContactTrace::record(SceneWorld& world) {
+  btDiscreteDynamicsWorld* dynamics = world.dynamicsWorld();
+  if (!dynamics) return;
+  Pairs now = pairsOf(*dynamics->getDispatcher());
+  std::map<const void*, BodyChurn> bodies;
+  ContactChurn churn;
+  const auto add = [&](const PairKey& key, const ContactChurn& c, bool held) {
+    churn.add(c);
+    for (const void* body : {key.first, key.second}) {
+      bodies[body].churn.add(c);
+      bodies[body].pairs += held ? 1 : 0;
+    }
+  };
+  for (const auto& [key, pair] : now) {
+    const auto before = m_last.find(key);
+    add(key, compare(pair, before == m_last.end() ? nullptr : &before->second), true);
+  }
+  // Pairs that held points last step and none now dropped them all.
+  for (const auto& [key, pair] : m_last) {
+    if (now.count(key)) continue;
+    ContactChurn c;
+    c.dropped = static_cast<std::uint32_t>(pair.points.size());
+    add(key, c, false);
+  }
+  const int step = world.last().step;
+  int awake = 0;
+  const int resets = writeResets(*dynamics, step, bodies, awake);
   m_resets += static_cast<std::uint64_t>(resets);
   m_total.add(churn);
-  m_churn << step << ',' << manifolds << ',' << churn.points << ',' << churn.keptId << ','
+  m_churn << step << ',' << now.size() << ',' << churn.points << ',' << churn.keptId << ','
           << churn.matched << ',' << churn.fresh << ',' << churn.moved << ',' << churn.turned
           << ',' << churn.dropped << ',' << resets << ',' << awake << '\n';
   m_last = std::move(now);

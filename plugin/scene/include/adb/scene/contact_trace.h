@@ -22,6 +22,9 @@
 
 #include "adb/scene/scene_world.h"
 
+class btDiscreteDynamicsWorld;
+class btDispatcher;
+
 namespace adb::scene {
 
 /// Contact events of one step, over some manifolds.
@@ -54,12 +57,32 @@ class ContactTrace {
     int index0, index1;
     double onA[3], onB[3], normal[3];
   };
+  /// A body pair's points after a step, its manifolds together, and the largest breaking
+  /// threshold among them (points without features are matched within it).
+  struct PairPoints {
+    double threshold = 0.0;
+    std::vector<Point> points;
+  };
   using PairKey = std::pair<const void*, const void*>;
+  using Pairs = std::map<PairKey, PairPoints>;
+  /// A body's churn over the pairs it is part of, and how many they are.
+  struct BodyChurn {
+    ContactChurn churn;
+    int pairs = 0;
+  };
+
+  static Pairs pairsOf(btDispatcher& dispatcher);
+  /// `now`'s points against `before`'s (null: the pair is new).
+  ContactChurn compare(const PairPoints& now, const PairPoints* before) const;
+  /// Writes a sleep_resets.csv row per body whose timer reset; returns how many did, and the
+  /// bodies awake in `awake`.
+  int writeResets(btDiscreteDynamicsWorld& dynamics, int step,
+                  std::map<const void*, BodyChurn>& bodies, int& awake);
 
   std::ofstream m_churn, m_resetsFile;
   double m_moved, m_turnedCos;
-  std::map<PairKey, std::vector<Point>> m_last;  // each manifold's points after last step
-  std::map<const void*, double> m_timers;         // each body's deactivation time
+  Pairs m_last;                            // every pair's points after last step
+  std::map<const void*, double> m_timers;  // each body's deactivation time
   ContactChurn m_total;
   std::uint64_t m_resets = 0;
 };
