@@ -172,6 +172,25 @@ TEST(TenMetreDropOntoAFiveCentimetreFloor, LosesBodiesWithoutCcd) {
   EXPECT_GT(lostInTenMetreDrop(Floor::AdbMesh, FrameSettings{}, false), 0);
 }
 
+// A ring spawned 0.25 into a 0.4-thick btBoxShape ledge, past halfway: no contacts of an
+// earlier step say which way it came in, and the box's nearest face for its deepest triangles
+// is the underside. It is pushed out the side its part inside the box lies on (the top), not
+// down through the ledge: a compound torus of BudgetAllPairs' pile, spawned so, was squeezed
+// through it and lost. Nothing lies under the ledge: pushed down, the ring falls.
+TEST(ABodySpawnedPastHalfwayIntoAThinBox, IsPushedOutTheSideItLiesOn) {
+  World w;
+  w.add(std::make_unique<btBoxShape>(btVector3(1.5f, 0.2f, 1.5f)), 0, btVector3(0, 0.2f, 0));
+  btRigidBody* ring = w.add(MeshData::build(test::flatTorus(0.5, 0.2)), 1, btVector3(0, 0.35f, 0));
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int step = 0; step < 90; ++step) {
+    w.step();
+    lowest = std::min(lowest, double(ring->getWorldTransform().getOrigin().y()));
+  }
+  // It starts with its centre 0.35 up and comes to rest on the top, 0.6 up.
+  EXPECT_GT(lowest, 0.3);
+  EXPECT_NEAR(ring->getWorldTransform().getOrigin().y(), 0.6, 0.03);
+}
+
 INSTANTIATE_TEST_SUITE_P(Walls, GearAtThirtyMetresPerSecond,
                          ::testing::Values(Wall::AdbMesh, Wall::BulletBox, Wall::Plane),
                          [](const auto& param) {

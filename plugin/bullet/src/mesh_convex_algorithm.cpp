@@ -232,6 +232,38 @@ bool isClosedForm(const btCollisionShape& shape) {
          type == BOX_SHAPE_PROXYTYPE;
 }
 
+// Which way to push the mesh out of the box `box` (tree-local) when no contacts of last step
+// say it: towards the side of the box the mesh's part inside it lies on. A body spawned, or
+// first found, more than halfway into a thin box (a ledge, a floor) is mostly on the side it
+// came from, where the box's nearest face is the far one. The corners and centroids of the
+// triangles near the box that lie inside it, each in box axes scaled by the box's half
+// extent (a thin box's thin axis speaks loudest), summed and turned back into the tree's
+// frame; zero when none lies inside. Adds the nodes visited to `visited`.
+Vec3 overlapSide(const AdbTree& tree, const OrientedBox& box, std::uint64_t& visited) {
+  const auto& vertices = tree.localVertices();
+  const Mat3 toBox = box.axes.transpose();
+  const Vec3 inverseHalf = box.half.cwiseMax(1e-12).cwiseInverse();
+  Vec3 side = Vec3::Zero();
+  const auto addIfInside = [&](const Vec3& p) {
+    const Vec3 q = toBox * (p - box.centre);
+    if ((q.cwiseAbs().array() <= box.half.array()).all()) side += q.cwiseProduct(inverseHalf);
+  };
+  OrientedBox meshBox = box;
+  meshBox.centre += tree.origin();
+  visited += forEachTriangleNear(tree, meshBox, [&](std::uint32_t t) {
+    const Triangle& tri = tree.triangles()[t];
+    const Vec3& a = vertices[tri[0]];
+    const Vec3& b = vertices[tri[1]];
+    const Vec3& c = vertices[tri[2]];
+    addIfInside(a);
+    addIfInside(b);
+    addIfInside(c);
+    addIfInside((a + b + c) / 3.0);
+  });
+  const Vec3 hint = box.axes * side;
+  return hint.allFinite() ? hint : Vec3::Zero();
+}
+
 // The closed-form contacts of a sphere, capsule or box against the triangles within reach,
 // offered to `selection`; returns the work (triangles and nodes visited).
 std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& selection) {
@@ -239,8 +271,12 @@ std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& s
   const btTransform& meshPose = f.meshWrap->getWorldTransform();
   const auto& vertices = tree.localVertices();
   const LocalConvex& local = f.local;
-  // Closed-form contacts of one triangle, offered to the selection; returns the deepest.
   std::uint64_t visited = 0;
+  Vec3 pushHint = f.pushHint;
+  if (local.kind == LocalConvex::Box && pushHint.isZero(0.0)) {
+    pushHint = overlapSide(tree, local.box, visited);
+  }
+  // Closed-form contacts of one triangle, offered to the selection; returns the deepest.
   const auto contactsOf = [&](std::uint32_t t) {
     ++visited;
     const Triangle& tri = tree.triangles()[t];
@@ -256,7 +292,7 @@ std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& s
         capsuleTriangleContacts(local.end0, local.end1, local.radius, a, b, c, f.reach, found);
         break;
       default:
-        boxTriangleContacts(local.box, a, b, c, f.reach, found, f.pushHint);
+        boxTriangleContacts(local.box, a, b, c, f.reach, found, pushHint);
         break;
     }
     addCandidates(found, meshPose, tree.origin(), f.meshMargin, f.threshold, f.meshIsBody0,
