@@ -19,7 +19,10 @@ SMALL_SCENE = {
     },
     "bodies": [
         {"name": "floor", "shape": "floor", "kind": "static", "position": [0, -0.25, 0]},
-        {"name": "a", "shape": "part", "position": [0, 0.6, 0]},
+        # adb.model's torus lies in its xy plane: both are turned flat, so that they are
+        # dropped apart (unturned, a stood in the floor with b threaded on it).
+        {"name": "a", "shape": "part", "position": [0, 0.6, 0],
+         "axis_angle": {"axis": [1, 0, 0], "degrees": 90}},
         {"name": "b", "shape": "part", "position": [0.2, 1.4, 0.1],
          "axis_angle": {"axis": [1, 0, 0], "degrees": 90}},
     ],

@@ -21,8 +21,9 @@ bool deeper(const PendingContact& x, const PendingContact& y) {
 
 }  // namespace
 
-void reduceContacts(ContactPoints& points, const btPersistentManifold& previous) {
-  const btScalar threshold = previous.getContactBreakingThreshold();
+void reduceContacts(ContactPoints& points, const ContactGroups& groups) {
+  const int capacity = groups.count * kManifoldPoints;
+  const btScalar threshold = groups.manifolds[0]->getContactBreakingThreshold();
   // The manifold's candidates first, [0, candidates), the speculative ones after.
   const auto speculative = std::partition(points.begin(), points.end(), [&](const PendingContact& c) {
     return c.distance <= threshold;
@@ -48,20 +49,23 @@ void reduceContacts(ContactPoints& points, const btPersistentManifold& previous)
     }
     ++chosen;
   };
-  // Persistence: last step's points whose features are still in contact, in its order.
-  for (int k = 0; k < previous.getNumContacts() && chosen < kManifoldPoints; ++k) {
-    const btManifoldPoint& old = previous.getContactPoint(k);
-    for (int i = chosen; i < considered; ++i) {
-      const PendingContact& c = points[static_cast<std::size_t>(i)];
-      const bool same = c.featureA == old.m_index0 && c.featureB == old.m_index1;
-      if (same && nearest[i] > apart) {
-        choose(i);
-        break;
+  // Persistence: last step's points whose features are still in contact, in their order.
+  for (int g = 0; g < groups.count; ++g) {
+    const btPersistentManifold& previous = *groups.manifolds[g];
+    for (int k = 0; k < previous.getNumContacts() && chosen < capacity; ++k) {
+      const btManifoldPoint& old = previous.getContactPoint(k);
+      for (int i = chosen; i < considered; ++i) {
+        const PendingContact& c = points[static_cast<std::size_t>(i)];
+        const bool same = c.featureA == old.m_index0 && c.featureB == old.m_index1;
+        if (same && nearest[i] > apart) {
+          choose(i);
+          break;
+        }
       }
     }
   }
   // The widest support: each next point the farthest from those chosen.
-  while (chosen < kManifoldPoints && chosen < considered) {
+  while (chosen < capacity && chosen < considered) {
     int best = chosen;
     for (int i = chosen + 1; i < considered; ++i) {
       if (nearest[i] > nearest[best]) best = i;

@@ -7,8 +7,8 @@
 // resting bodies jittered and piles stayed awake (docs/bullet-results.md, "Piles that fall
 // asleep"). Here the choice depends only on the points themselves and on last step's:
 //  1. the deepest point (ties: by features), which stops the bodies sinking;
-//  2. the points whose features (PendingContact::featureA/B) last step's manifold held, in
-//     its order: a contact that is still there stays, and keeps its impulses;
+//  2. the points whose features (PendingContact::featureA/B) last step's manifolds held, in
+//     their order: a contact that is still there stays, and keeps its impulses;
 //  3. then greedily the point farthest from those chosen: the widest support, which also
 //     reaches a second region of contact (a ring hooked over another touches it twice).
 // Chosen points lie farther apart than the breaking threshold on body A: Bullet merges a new
@@ -22,13 +22,13 @@
 
 namespace adb::detail {
 
-/// Points a mesh-mesh pair writes to its manifold at most: the 4 it holds (a fifth would
-/// make it drop one of the others every step).
+/// Points a mesh-mesh pair writes to each of its manifolds at most: the 4 one holds (a fifth
+/// would make it drop one of the others every step).
 constexpr int kManifoldPoints = 4;
 
-/// Reorders `points` so that the ones chosen for `previous` (the pair's manifold, before this
-/// step's points) come first in the order they were chosen, followed by the speculative ones,
-/// and drops the rest.
-void reduceContacts(ContactPoints& points, const btPersistentManifold& previous);
+/// Reorders `points` so that the ones chosen for the pair's `groups` (their manifolds before
+/// this step's points; kManifoldPoints for each group) come first in the order they were
+/// chosen, followed by the speculative ones, and drops the rest.
+void reduceContacts(ContactPoints& points, const ContactGroups& groups);
 
 }  // namespace adb::detail

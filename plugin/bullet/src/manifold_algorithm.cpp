@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "adb/bullet/dispatcher.h"
+#include "pair_contacts.h"
 #include "contact_selection.h"
 #include "conversions.h"
 #include "frame_scheduler.h"
@@ -29,7 +30,7 @@ ManifoldAlgorithm::ManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo&
 
 ManifoldAlgorithm::~ManifoldAlgorithm() {
   if (m_manifold) m_dispatcher->releaseManifold(m_manifold);
-  if (m_speculativeManifold) m_dispatcher->releaseManifold(m_speculativeManifold);
+  if (m_secondManifold) m_dispatcher->releaseManifold(m_secondManifold);
 }
 
 void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
@@ -110,6 +111,18 @@ void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
   btManifoldResult result(body0, body1);
   result.setPersistentManifold(m_manifold);
   result.refreshContactPoints();
+  if (btPersistentManifold* second = secondGroupManifold()) {
+    result.setPersistentManifold(second);
+    result.refreshContactPoints();
+  }
+}
+
+detail::ContactGroups ManifoldAlgorithm::contactGroups() const {
+  detail::ContactGroups groups;
+  if (!m_manifold) return groups;
+  groups.manifolds[groups.count++] = m_manifold;
+  if (btPersistentManifold* second = secondGroupManifold()) groups.manifolds[groups.count++] = second;
+  return groups;
 }
 
 btTransform ManifoldAlgorithm::meshInOther(const btTransform& transform0,
@@ -156,9 +169,12 @@ bool ManifoldAlgorithm::contactsStillHold(btScalar motion) const {
 
 btVector3 ManifoldAlgorithm::lastNormalsOnB() const {
   btVector3 sum(0, 0, 0);
-  if (!m_manifold) return sum;
-  for (int i = 0; i < m_manifold->getNumContacts(); ++i) {
-    sum += m_manifold->getContactPoint(i).m_normalWorldOnB;
+  const detail::ContactGroups groups = contactGroups();
+  for (int g = 0; g < groups.count; ++g) {
+    const btPersistentManifold& manifold = *groups.manifolds[g];
+    for (int i = 0; i < manifold.getNumContacts(); ++i) {
+      sum += manifold.getContactPoint(i).m_normalWorldOnB;
+    }
   }
   return sum;
 }
@@ -215,6 +231,7 @@ bool wantsSweep(const btCollisionObjectWrapper* body, btScalar timeStep) {
 // them.
 void ManifoldAlgorithm::setReach(const btCollisionObjectWrapper* body0,
                                  const btCollisionObjectWrapper* body1, btScalar timeStep) {
+  const bool wasSpeculative = m_speculative > 0;
   m_speculative = 0;
   if (timeStep > 0 && (wantsSweep(body0, timeStep) || wantsSweep(body1, timeStep))) {
     // Any two points of the bodies close by at most the sum of their speed bounds in a
@@ -222,14 +239,21 @@ void ManifoldAlgorithm::setReach(const btCollisionObjectWrapper* body0,
     const btScalar closing = (pointSpeedBound(body0) + pointSpeedBound(body1)) * timeStep;
     if (std::isfinite(closing)) m_speculative = closing;
   }
-  if (m_speculative > 0 && !m_speculativeManifold) {
-    m_speculativeManifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
-                                                         body1->getCollisionObject());
+  if ((m_speculative > 0 || refinable()) && !m_secondManifold) {
+    m_secondManifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
+                                                    body1->getCollisionObject());
   }
-  if (!m_speculativeManifold) return;
-  // Last step's speculative points said where the bodies might meet then: start afresh.
-  m_speculativeManifold->clearManifold();
-  m_speculativeManifold->setContactBreakingThreshold(contactReach());
+  if (!m_secondManifold) return;
+  if (m_speculative > 0) {
+    // Last step's speculative points said where the bodies might meet then: start afresh.
+    m_secondManifold->clearManifold();
+    m_secondManifold->setContactBreakingThreshold(contactReach());
+    return;
+  }
+  // A second group of contacts, with the first's threshold (Bullet's, as a new manifold
+  // has it before the first has been made).
+  if (wasSpeculative) m_secondManifold->clearManifold();
+  if (m_threshold > 0) m_secondManifold->setContactBreakingThreshold(m_threshold);
 }
 
 void ManifoldAlgorithm::ensureManifold(const btCollisionObjectWrapper* body0,
@@ -277,6 +301,7 @@ bool ManifoldAlgorithm::acceptPoses(const btCollisionObjectWrapper* body0,
     if (m_scheduler) m_scheduler->noteBadPose(body->getCollisionObject(), defect);
   }
   if (!usable && m_manifold) m_manifold->clearManifold();
+  if (!usable && m_secondManifold) m_secondManifold->clearManifold();
   return usable;
 }
 

@@ -1,8 +1,9 @@
 // Internal: ManifoldAlgorithm, what adb's Bullet collision algorithms share, and
 // CreateAlgorithm, the factory Bullet's dispatcher calls.
 //
-// Shared: which body is the mesh, one persistent manifold made on first use and released
-// with the algorithm, the reach of its contacts (speculative for fast bodies that ask for
+// Shared: which body is the mesh, a persistent manifold made on first use and released
+// with the algorithm (and a second: speculative contacts, or a mesh-mesh pair's second group
+// of contacts), the reach of its contacts (speculative for fast bodies that ask for
 // continuous collision detection), the pose check, and the hand-over to the step's
 // scheduler. Under adb::Dispatcher every pair (a compound's children included) is only
 // noted while Bullet dispatches; the scheduler then runs them all within the step's one
@@ -27,6 +28,7 @@ namespace adb {
 namespace detail {
 class ContactSelection;
 class FrameScheduler;
+struct ContactGroups;
 }
 
 class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
@@ -123,13 +125,13 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// body asks for continuous collision detection (setCcdMotionThreshold) and moves more than
   /// its threshold in this step, how far the bodies can close in the step; 0 otherwise.
   /// Contacts that far apart are speculative: Bullet's solver removes only the approach that
-  /// would carry the bodies past them. They go to a second manifold of the pair
+  /// would carry the bodies past them. They go to the pair's second manifold
   /// (speculative_result.h), rebuilt every step.
   btScalar speculativeReach() const { return m_speculative; }
   /// How far apart features make contacts this step: breakingThreshold() plus
   /// speculativeReach().
   btScalar contactReach() const { return m_threshold + m_speculative; }
-  /// Refreshes the pair's manifold for the bodies' new poses (Bullet's refreshContactPoints)
+  /// Refreshes the pair's manifolds for the bodies' new poses (Bullet's refreshContactPoints)
   /// without colliding: what a pair the budget skipped keeps from its last step.
   void keepLastContacts(const btCollisionObjectWrapper* body0,
                         const btCollisionObjectWrapper* body1);
@@ -140,7 +142,7 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   }
   void getAllContactManifolds(btManifoldArray& manifolds) override {
     if (m_manifold) manifolds.push_back(m_manifold);
-    if (m_speculativeManifold) manifolds.push_back(m_speculativeManifold);
+    if (m_secondManifold) manifolds.push_back(m_secondManifold);
   }
 
  protected:
@@ -156,8 +158,17 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   const btPersistentManifold* existingManifold() const { return m_manifold; }
   /// The manifold of this step's speculative contacts, or null when there are none to make.
   btPersistentManifold* speculativeManifold() const {
-    return m_speculative > 0 ? m_speculativeManifold : nullptr;
+    return m_speculative > 0 ? m_secondManifold : nullptr;
   }
+  /// A refinable (mesh-mesh) pair's second group of contacts, kept from step to step like
+  /// the first, in the manifold a fast pair's speculative contacts use: null while the pair
+  /// has speculative contacts, and before its first query.
+  btPersistentManifold* secondGroupManifold() const {
+    return m_speculative == 0 ? m_secondManifold : nullptr;
+  }
+  /// The manifolds the pair's contacts go to (pair_contacts.h): its manifold and its
+  /// secondGroupManifold(); none before the pair's first dispatch.
+  detail::ContactGroups contactGroups() const;
 
  private:
   /// Makes the pair's manifold if it has none (Bullet's dispatcher owns it; released with
@@ -176,14 +187,15 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   std::uint64_t collideWithReach(const btCollisionObjectWrapper* body0,
                                  const btCollisionObjectWrapper* body1,
                                  const btDispatcherInfo& info, btManifoldResult* result);
-  /// Sets speculativeReach() for this step and empties the speculative manifold (made on
-  /// first use).
+  /// Sets speculativeReach() for this step, and readies the second manifold (made on first
+  /// use): emptied for speculative contacts, or for a refinable pair without them a second
+  /// group of contacts, emptied only of a fast step's speculative points.
   void setReach(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
                 btScalar timeStep);
   btTransform meshInOther(const btTransform& transform0, const btTransform& transform1) const;
 
   btPersistentManifold* m_manifold = nullptr;
-  btPersistentManifold* m_speculativeManifold = nullptr;
+  btPersistentManifold* m_secondManifold = nullptr;  // speculativeManifold, secondGroupManifold
   detail::FrameScheduler* m_scheduler = nullptr;  // set under adb::Dispatcher
   std::uint64_t m_lastWork = 0;
   std::uint64_t m_lastRun = 0;

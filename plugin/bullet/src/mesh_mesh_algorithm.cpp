@@ -166,18 +166,17 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
     m_pointCount.plausible = detail::addPlausibleContacts(posed, m_traversal.openPairs(),
                                                           settings, hint, m_points);
   }
-  if (const btPersistentManifold* manifold = existingManifold()) {
-    detail::reduceContacts(m_points, *manifold);
-  }
+  const detail::ContactGroups groups = contactGroups();
+  if (groups.count > 0) detail::reduceContacts(m_points, groups);
   m_pointsReady = true;
 }
 
 ContactCount MeshMeshAlgorithm::writePoints(const btCollisionObjectWrapper* body0,
                                             const btCollisionObjectWrapper* body1,
                                             btManifoldResult& result) {
-  btPersistentManifold* manifold = manifoldFor(body0, body1, &result);
-  detail::writeContactPoints(m_points, result, *manifold, body0->m_partId, body1->m_partId);
-  result.refreshContactPoints();
+  manifoldFor(body0, body1, &result);
+  detail::writeContactPoints(m_points, result, contactGroups(), body0->m_partId,
+                             body1->m_partId);
   m_pointsReady = false;
   return m_pointCount;
 }

@@ -174,24 +174,48 @@ void inheritSolverState(btManifoldPoint& point, const btManifoldPoint& from) {
   point.m_lifeTime = from.m_lifeTime;
 }
 
+// Whether `point` lies on body A farther than `threshold` from every point the groups hold:
+// Bullet would merge it into a nearer one.
+bool apartFromAll(const btManifoldPoint& point, const ContactGroups& groups, btScalar threshold) {
+  for (int g = 0; g < groups.count; ++g) {
+    const btPersistentManifold& manifold = *groups.manifolds[g];
+    for (int i = 0; i < manifold.getNumContacts(); ++i) {
+      const btVector3 d = manifold.getContactPoint(i).m_localPointA - point.m_localPointA;
+      if (d.length2() < threshold * threshold) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
-                        btPersistentManifold& manifold, int partId0, int partId1) {
-  // Last step's points, then an empty manifold: the points written are exactly this step's
+                        const ContactGroups& groups, int partId0, int partId1) {
+  // Last step's points, then empty manifolds: the points written are exactly this step's
   // (Bullet's matching by distance, fed more points than it holds, kept whichever four
   // arrived in a lucky order, and handed one point's impulses to another).
-  btManifoldPoint previous[MANIFOLD_CACHE_SIZE];
-  const int count = manifold.getNumContacts();
-  for (int k = 0; k < count; ++k) previous[k] = manifold.getContactPoint(k);
-  bool claimed[MANIFOLD_CACHE_SIZE] = {};
-  manifold.clearManifold();
-  const btScalar threshold = manifold.getContactBreakingThreshold();
+  constexpr int kCapacity = kMaxContactGroups * MANIFOLD_CACHE_SIZE;
+  btManifoldPoint previous[kCapacity];
+  int count = 0;
+  for (int g = 0; g < groups.count; ++g) {
+    btPersistentManifold& manifold = *groups.manifolds[g];
+    for (int k = 0; k < manifold.getNumContacts(); ++k) previous[count++] = manifold.getContactPoint(k);
+    manifold.clearManifold();
+  }
+  bool claimed[kCapacity] = {};
+  const btScalar threshold = groups.manifolds[0]->getContactBreakingThreshold();
+  int group = 0;
+  out.setPersistentManifold(groups.manifolds[0]);
   for (const PendingContact& c : points) {
+    // The next group once this one is full (a speculative point goes to its own manifold).
+    while (group + 1 < groups.count &&
+           groups.manifolds[group]->getNumContacts() >= MANIFOLD_CACHE_SIZE) {
+      out.setPersistentManifold(groups.manifolds[++group]);
+    }
     out.setShapeIdentifiersA(partId0, c.featureA);
     out.setShapeIdentifiersB(partId1, c.featureB);
     out.addContactPoint(c.normalOnB, c.pointOnB, c.distance);
-    btManifoldPoint* point = findPoint(manifold, c.pointOnB);
+    btManifoldPoint* point = findPoint(*groups.manifolds[group], c.pointOnB);
     if (!point) continue;  // refused, or a speculative point (its own manifold)
     const int from = predecessor(*point, previous, count, claimed, threshold);
     if (from >= 0) {
@@ -205,18 +229,22 @@ void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
   }
   // Last step's points that no point of this step's took over stay while there is room and
   // they lie apart from the new ones, as Bullet's persistent manifold keeps them: the
-  // caller's refreshContactPoints re-measures them at the new poses and drops those now
-  // farther than the breaking threshold. Exact contacts come only from crossing triangles:
-  // without this, a contact the solver had just pushed apart vanished, the body fell back
-  // into it, and the contact came back a step later: a resting body bounced for ever.
-  for (int k = 0; k < count && manifold.getNumContacts() < MANIFOLD_CACHE_SIZE; ++k) {
-    if (claimed[k]) continue;
-    bool apart = true;
-    for (int i = 0; i < manifold.getNumContacts() && apart; ++i) {
-      const btVector3 d = manifold.getContactPoint(i).m_localPointA - previous[k].m_localPointA;
-      apart = d.length2() >= threshold * threshold;
+  // refresh below re-measures them at the new poses and drops those now farther than the
+  // breaking threshold. Exact contacts come only from crossing triangles: without this, a
+  // contact the solver had just pushed apart vanished, the body fell back into it, and the
+  // contact came back a step later: a resting body bounced for ever.
+  for (int k = 0; k < count; ++k) {
+    if (claimed[k] || !apartFromAll(previous[k], groups, threshold)) continue;
+    for (int g = 0; g < groups.count; ++g) {
+      if (groups.manifolds[g]->getNumContacts() < MANIFOLD_CACHE_SIZE) {
+        groups.manifolds[g]->addManifoldPoint(previous[k]);
+        break;
+      }
     }
-    if (apart) manifold.addManifoldPoint(previous[k]);
+  }
+  for (int g = groups.count - 1; g >= 0; --g) {
+    out.setPersistentManifold(groups.manifolds[g]);
+    out.refreshContactPoints();
   }
 }
 

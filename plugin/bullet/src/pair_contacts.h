@@ -51,14 +51,31 @@ constexpr int plausibleFeature(std::uint32_t node) { return -2 - static_cast<int
 /// the pair's most points, then stays).
 using ContactPoints = std::vector<PendingContact>;
 
+/// Most manifolds one pair's contacts are written to.
+constexpr int kMaxContactGroups = 2;
+
+/// The manifolds a pair's contact points go to, in order, each holding Bullet's 4: the pair's
+/// manifold and, for a mesh-mesh pair without speculative contacts this step, its second
+/// (ManifoldAlgorithm::secondGroupManifold). Why two: a body held at 4 points rocks. Piled
+/// meshes rest on several regions of each other (gear teeth, a ring on two strands, a tube's
+/// rim inside another); at 4 points a pair held one or two of them, the solver's push on
+/// those spun the body over 1 rad/s, and piles stayed awake; at 8 they settle
+/// (docs/bullet-results.md, "Piles that fall asleep"; 12 settled no better).
+struct ContactGroups {
+  btPersistentManifold* manifolds[kMaxContactGroups] = {};
+  int count = 0;
+};
+
 /// Writes `points` through `out` (btManifoldResult or a SpeculativeResult) in place of what
-/// `manifold` held, in order, each with its features and the wrappers' part ids (`partId0`,
-/// `partId1`), and sets the softened ones' ERP and CFM. A point whose features a point of
-/// last step had takes over that point's solver state (its impulses, warm-starting the
-/// solver, and its age); one without takes it from the nearest unclaimed point within the
-/// breaking threshold, as Bullet's own matching would. The stepping thread's part.
+/// the `groups` held, in order, each with its features and the wrappers' part ids
+/// (`partId0`, `partId1`), filling each group's manifold before the next, and sets the
+/// softened ones' ERP and CFM. A point whose features a point of last step had (in any
+/// group) takes over that point's solver state (its impulses, warm-starting the solver, and
+/// its age); one without takes it from the nearest unclaimed point within the breaking
+/// threshold, as Bullet's own matching would. Then refreshes every group for the bodies'
+/// poses and leaves `out` on the first. The stepping thread's part.
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
-                        btPersistentManifold& manifold, int partId0, int partId1);
+                        const ContactGroups& groups, int partId0, int partId1);
 
 /// The preferred separation direction from body 0 towards body 1 for this step: against the
 /// last step's contact normals on body 1 (`lastNormalsOnB`, their sum; warm starting:
