@@ -32,6 +32,12 @@ btTransform ringThroughTube() {
                      btVector3(btScalar(0.95), btScalar(0.02), 0));
 }
 
+// Both rings lie flat, the second 0.3 across and 0.25 up, 0.05 into the first: their tubes
+// cross in two long arcs, enough crossing triangle pairs for both manifolds.
+btTransform ringsCrossingInTwoArcs() {
+  return btTransform(btQuaternion::getIdentity(), btVector3(btScalar(0.3), 0, btScalar(0.25)));
+}
+
 // Two tori crossing each other, frozen in place (a collision world: nothing moves them),
 // collided step after step by adb's dispatcher with `frame`.
 class FrozenPair {
@@ -73,6 +79,9 @@ class FrozenPair {
     return points;
   }
   std::size_t triangles() const { return m_data->mesh.triangleCount(); }
+  void setFrameSettings(const FrameSettings& frame) {
+    static_cast<Dispatcher&>(*m_dispatcher).setFrameSettings(frame);
+  }
   const FrameStats& stats() const {
     return static_cast<Dispatcher&>(*m_dispatcher).lastFrameStats();
   }
@@ -125,12 +134,11 @@ TEST(ContactIdentity, AFrozenPairWritesTheSamePointsWithTheSameIdsEveryStep) {
 }
 
 TEST(ContactIdentity, APairRestingOnSeveralRegionsHoldsEightPointsInTwoManifolds) {
-  // Two rings lying flat, the second 0.3 across and 0.25 up, 0.05 into the first: their tubes
-  // cross in two long arcs. Four points held one or two places of such a contact, and the
+  // Two rings crossing in two long arcs (ringsCrossingInTwoArcs). Four points held one or two
+  // places of such a contact, and the
   // solver's push there spun piled bodies (docs/bullet-results.md); the pair now writes the
   // deepest point, the points it had, and the widest support, up to four per manifold.
-  FrozenPair pair(FrameSettings{}, btTransform(btQuaternion::getIdentity(),
-                                               btVector3(btScalar(0.3), 0, btScalar(0.25))));
+  FrozenPair pair(FrameSettings{}, ringsCrossingInTwoArcs());
   const std::vector<WrittenPoint> points = pair.step();
   std::vector<int> perManifold(2, 0);
   for (const WrittenPoint& p : points) {
@@ -152,6 +160,37 @@ TEST(ContactIdentity, APairRestingOnSeveralRegionsHoldsEightPointsInTwoManifolds
   // Every point pushes the upper ring up and the lower down (Bullet's normal on body 1, the
   // upper ring, points towards body 0), none sideways through a tube.
   for (const WrittenPoint& p : points) EXPECT_LT(p.normal.z(), -0.25);
+}
+
+TEST(ContactIdentity, ACutPairFrozenInPlaceKeepsItsExactPointsEveryStep) {
+  // Queried every step (the reuse off), exact first, then under a budget of one node pair a
+  // step: the query never gets past the roots, and the pair's points must be last step's
+  // exact ones, re-measured where they are, not guesses from the roots: a cut never deletes
+  // a contact that held a body.
+  for (std::uint64_t budget : {1u, 16u, 64u, 256u}) {
+  SCOPED_TRACE(budget);
+  FrameSettings frame;
+  frame.keepRestingContacts = false;
+  FrozenPair pair(frame, ringsCrossingInTwoArcs());
+  const std::vector<WrittenPoint> exact = pair.step();
+  ASSERT_EQ(exact.size(), 8u);
+  frame.budgetNodePairs = budget;
+  pair.setFrameSettings(frame);
+  int cutSteps = 0;
+  for (int step = 2; step <= 10; ++step) {
+    const std::vector<WrittenPoint> now = pair.step();
+    cutSteps += static_cast<int>(pair.stats().cutPairs);
+    for (const WrittenPoint& p : exact) {
+      const auto same = [&](const WrittenPoint& q) {
+        return q.index0 == p.index0 && q.index1 == p.index1 && (q.onB - p.onB).length() < 1e-5;
+      };
+      EXPECT_TRUE(std::any_of(now.begin(), now.end(), same))
+          << "step " << step << ": the point of triangles " << p.index0 << ", " << p.index1
+          << " is gone";
+    }
+  }
+  EXPECT_GT(cutSteps, 0);
+  }
 }
 
 }  // namespace

@@ -28,7 +28,11 @@ constexpr int kManifoldPoints = 4;
 
 /// Reorders `points` so that the ones chosen for the pair's `groups` (their manifolds before
 /// this step's points; kManifoldPoints for each group) come first in the order they were
-/// chosen, followed by the speculative ones, and drops the rest.
-void reduceContacts(ContactPoints& points, const ContactGroups& groups);
+/// chosen, followed by the speculative ones, and drops the rest. Exact points go before
+/// plausible ones. After a `cut` query, last step's points come first, and this step's new
+/// points take only the room left by last step's exact points the query did not reach
+/// again (the writer keeps those, re-measured): a cut never deletes a contact that held a
+/// body, and a cut pair at rest writes the same points every step.
+void reduceContacts(ContactPoints& points, const ContactGroups& groups, bool cut = false);
 
 }  // namespace adb::detail

@@ -428,6 +428,17 @@ void FrameScheduler::runOnPool(std::size_t jobs, Job& job) {
   }
 }
 
+// A pair with the world that has speculative contacts this step (a body that asked for CCD
+// moves farther than its threshold) runs whatever the budget: skipped, its body would pass
+// the floor it is about to reach (a gear at 50 m/s through a plane under a 1 us step). Its
+// cost overruns the budget for the steps the body is fast (docs/bullet-budget.md,
+// "Continuous collision detection"). A mesh-mesh pair's speculative query is budgeted as any
+// other: run whole, under a tight node-pair budget, a body of the 10 m drop was lost through
+// its box floor (TenMetreDropOntoAFiveCentimetreFloor).
+bool FrameScheduler::sweeps(const DeferredPair& pair) {
+  return pair.algorithm->speculativeReach() > 0;
+}
+
 // What a mesh-mesh pair wants in the first pass: what it needed last step and a quarter more
 // (a pair's need grows while bodies settle into each other), at least a few levels of both
 // trees.
@@ -455,7 +466,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   // (a GJK pair costs far more per unit than a closed-form one).
   const std::uint64_t expected = expectedCost(algorithm.lastWork(), kFirstWholeWork);
   const double expectedMicros = m_costs.expectedWholeMicros(algorithm);
-  if (expected > shareUnits || expectedMicros > microsShare) {
+  if (!sweeps(pair) && (expected > shareUnits || expectedMicros > microsShare)) {
     // A pair expected to cost more than the whole budget would never run again (the
     // estimate is re-measured only by running), and its kept contacts would not hold a
     // moving body: it runs regardless, the step overrunning by that one pair, once its

@@ -99,6 +99,8 @@ class FrameScheduler {
   /// job(i) for i in [0, jobs) on the pool, its time added to the step's statistics.
   template <class Job>
   void runOnPool(std::size_t jobs, Job& job);
+  /// Whether a pair with the world runs whatever the budget: it has speculative contacts.
+  static bool sweeps(const DeferredPair& pair);
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);

@@ -167,7 +167,7 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
                                                           settings, hint, m_points);
   }
   const detail::ContactGroups groups = contactGroups();
-  if (groups.count > 0) detail::reduceContacts(m_points, groups);
+  if (groups.count > 0) detail::reduceContacts(m_points, groups, isBudgetStop(m_lastStop));
   m_pointsReady = true;
 }
 

@@ -233,12 +233,18 @@ void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
   // breaking threshold. Exact contacts come only from crossing triangles: without this, a
   // contact the solver had just pushed apart vanished, the body fell back into it, and the
   // contact came back a step later: a resting body bounced for ever.
-  for (int k = 0; k < count; ++k) {
-    if (claimed[k] || !apartFromAll(previous[k], groups, threshold)) continue;
-    for (int g = 0; g < groups.count; ++g) {
-      if (groups.manifolds[g]->getNumContacts() < MANIFOLD_CACHE_SIZE) {
-        groups.manifolds[g]->addManifoldPoint(previous[k]);
-        break;
+  // Exact ones (two triangles' ids) first: a cut query's plausible points left them room.
+  for (const bool exact : {true, false}) {
+    for (int k = 0; k < count; ++k) {
+      const bool isExact = previous[k].m_index0 >= 0 && previous[k].m_index1 >= 0;
+      if (claimed[k] || isExact != exact || !apartFromAll(previous[k], groups, threshold)) {
+        continue;
+      }
+      for (int g = 0; g < groups.count; ++g) {
+        if (groups.manifolds[g]->getNumContacts() < MANIFOLD_CACHE_SIZE) {
+          groups.manifolds[g]->addManifoldPoint(previous[k]);
+          break;
+        }
       }
     }
   }
