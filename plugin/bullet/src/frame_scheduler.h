@@ -5,6 +5,7 @@
 #include <BulletCollision/BroadphaseCollision/btDispatcher.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -26,6 +27,8 @@ struct QueryRequest {
   bool resume = false;      ///< go on from where the pair's last query stopped
   /// Granted less than it wants: a new exact query then descends deepest first.
   bool starved = false;
+  /// A sweeping pair's (FrameScheduler::sweeps): an exact query with no grant and no time cap.
+  bool whole = false;
 
   /// A query from the roots; `starved` as above.
   static QueryRequest fresh(std::uint64_t grant, double micros, bool starved = false) {
@@ -34,6 +37,10 @@ struct QueryRequest {
   /// The pair's last query, given `grant` more.
   static QueryRequest resumed(std::uint64_t grant, double micros) {
     return QueryRequest{grant, micros, true, false};
+  }
+  /// A query from the roots that runs to its end whatever the budget.
+  static QueryRequest unbounded() {
+    return QueryRequest{~std::uint64_t{0}, HUGE_VAL, false, false, true};
   }
 };
 
@@ -99,7 +106,7 @@ class FrameScheduler {
   /// job(i) for i in [0, jobs) on the pool, its time added to the step's statistics.
   template <class Job>
   void runOnPool(std::size_t jobs, Job& job);
-  /// Whether a pair with the world runs whatever the budget: it has speculative contacts.
+  /// Whether a pair runs whatever the budget: it has speculative contacts.
   static bool sweeps(const DeferredPair& pair);
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);

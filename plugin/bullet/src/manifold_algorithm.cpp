@@ -239,6 +239,11 @@ void ManifoldAlgorithm::setReach(const btCollisionObjectWrapper* body0,
     const btScalar closing = (pointSpeedBound(body0) + pointSpeedBound(body1)) * timeStep;
     if (std::isfinite(closing)) m_speculative = closing;
   }
+  if (m_speculative > 0) {
+    m_landingSteps = kLandingSteps;
+  } else if (m_landingSteps > 0) {
+    --m_landingSteps;
+  }
   if ((m_speculative > 0 || refinable()) && !m_secondManifold) {
     m_secondManifold = m_dispatcher->getNewManifold(body0->getCollisionObject(),
                                                     body1->getCollisionObject());

@@ -128,6 +128,10 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// would carry the bodies past them. They go to the pair's second manifold
   /// (speculative_result.h), rebuilt every step.
   btScalar speculativeReach() const { return m_speculative; }
+  /// Whether the pair had speculative contacts within the last kLandingSteps steps: a fast
+  /// body that has just reached the other one is still settling onto it.
+  bool landing() const { return m_landingSteps > 0; }
+  static constexpr std::uint8_t kLandingSteps = 30;
   /// How far apart features make contacts this step: breakingThreshold() plus
   /// speculativeReach().
   btScalar contactReach() const { return m_threshold + m_speculative; }
@@ -214,6 +218,9 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   bool m_swapped;
 
  private:
+  // Steps left in which the pair counts as landing (landing()); in the padding after
+  // m_swapped.
+  std::uint8_t m_landingSteps = 0;
   btScalar m_threshold = 0;    // the manifold's breaking threshold as Bullet made it
   btScalar m_speculative = 0;  // speculativeReach() of this step
 };
