@@ -121,7 +121,9 @@ detail::ContactGroups ManifoldAlgorithm::contactGroups() const {
   detail::ContactGroups groups;
   if (!m_manifold) return groups;
   groups.manifolds[groups.count++] = m_manifold;
-  if (btPersistentManifold* second = secondGroupManifold()) groups.manifolds[groups.count++] = second;
+  if (btPersistentManifold* second = secondGroupManifold()) {
+    groups.manifolds[groups.count++] = second;
+  }
   return groups;
 }
 

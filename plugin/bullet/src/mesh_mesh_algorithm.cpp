@@ -78,9 +78,8 @@ void spreadSpeculativeContacts(const MeshShape& mesh0, const btTransform& transf
   }
   if (!closest) return;
   detail::PendingContact nearest = *closest;
-  points.erase(std::remove_if(points.begin(), points.end(),
-                              [&](const detail::PendingContact& c) { return c.distance > threshold; }),
-               points.end());
+  const auto speculative = [&](const detail::PendingContact& c) { return c.distance > threshold; };
+  points.erase(std::remove_if(points.begin(), points.end(), speculative), points.end());
   // Speculative points only (their own manifold): once the bodies touch, the corners may
   // close by the breaking threshold, and the touching points (the pair's manifold) hold.
   nearest.distance = btMax(nearest.distance, threshold * btScalar(1.001));

@@ -199,7 +199,9 @@ void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
   int count = 0;
   for (int g = 0; g < groups.count; ++g) {
     btPersistentManifold& manifold = *groups.manifolds[g];
-    for (int k = 0; k < manifold.getNumContacts(); ++k) previous[count++] = manifold.getContactPoint(k);
+    for (int k = 0; k < manifold.getNumContacts(); ++k) {
+      previous[count++] = manifold.getContactPoint(k);
+    }
     manifold.clearManifold();
   }
   bool claimed[kCapacity] = {};
