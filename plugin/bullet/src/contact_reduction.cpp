@@ -81,7 +81,13 @@ void reduceContacts(ContactPoints& points, const ContactGroups& groups, bool cut
     ++chosen;
   };
   // Whether candidate i may still be chosen: apart from the chosen ones, within the room.
-  const auto eligible = [&](int i) { return chosen < room && nearest[i] > apart; };
+  // A plausible point only where the pair knows no exact one, this step's or kept: it
+  // guesses where the surfaces may meet, and a guess beside a known contact only pushes.
+  const bool knowsExact = room < capacity || (candidates > 0 && !points[0].softened);
+  const auto eligible = [&](int i) {
+    if (!(chosen < room && nearest[i] > apart)) return false;
+    return !(knowsExact && points[static_cast<std::size_t>(i)].softened);
+  };
   // Persistence: last step's points whose features are still in contact, in their order.
   const auto persist = [&] {
     for (int g = 0; g < groups.count; ++g) {
