@@ -16,8 +16,8 @@ namespace adb::demo {
 render::Camera sceneCamera(const scene::SceneWorld& world);
 
 /// The caption of a picture after the world's last step: the backend, its budget, the step,
-/// the simulated time and the step's wall clock.
-std::string sceneCaption(const scene::SceneWorld& world);
+/// the simulated time and the run's mean step so far (`meanStepMillis`, the recorder's).
+std::string sceneCaption(const scene::SceneWorld& world, double meanStepMillis);
 
 render::Image drawScene(const scene::SceneWorld& world, const render::Camera& camera, int width,
                         int height, const std::string& caption);

@@ -143,7 +143,8 @@ RunResult runOne(const Scene& scene, Backend backend, const SceneRunOptions& o,
     const bool inStrip = std::find(strip.begin(), strip.end(), step) != strip.end();
     const bool inMovie = step % frameEvery == 0 || step == steps;
     if (o.render && (inStrip || inMovie)) {
-      result.lastFrame = drawScene(world, camera, o.width, o.height, sceneCaption(world));
+      result.lastFrame = drawScene(world, camera, o.width, o.height,
+                                   sceneCaption(world, recorder->meanStepMillisSoFar()));
       if (inStrip) result.strip.push_back(result.lastFrame);
       result.rendered = true;
     }

@@ -81,8 +81,9 @@ class World {
     requireRange(width, 16, 16384, "width");
     requireRange(height, 16, 16384, "height");
     py::gil_scoped_release release;
+    const double meanStep = m_recorder->meanStepMillisSoFar();
     const render::Image image = demo::drawScene(*m_world, demo::sceneCamera(*m_world), width,
-                                                height, demo::sceneCaption(*m_world));
+                                                height, demo::sceneCaption(*m_world, meanStep));
     render::writePng(image, path);
   }
 

@@ -196,7 +196,7 @@ void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
 const RunSummary& Recorder::finish() {
   RunSummary& s = m_summary;
   if (s.steps > 0) {
-    s.meanStepMillis = 1e3 * m_stepSeconds / s.steps;
+    s.meanStepMillis = meanStepMillisSoFar();
     s.meanBudgetUse = m_budgetUse / s.steps;
     s.meanPenetration = m_penetration / s.steps;
   }

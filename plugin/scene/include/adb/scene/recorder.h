@@ -94,6 +94,11 @@ class Recorder {
   /// Writes summary.json (with a folder) and returns the summary.
   const RunSummary& finish();
   const RunSummary& summary() const { return m_summary; }
+  /// The mean wall clock of the steps recorded so far, in milliseconds (0 before any): what
+  /// finish() gives as RunSummary::meanStepMillis, mid-run (a picture's caption).
+  double meanStepMillisSoFar() const {
+    return m_summary.steps > 0 ? 1e3 * m_stepSeconds / m_summary.steps : 0.0;
+  }
 
  private:
   void open(std::ofstream& stream, const std::string& name);
