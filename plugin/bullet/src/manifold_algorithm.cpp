@@ -164,8 +164,12 @@ bool ManifoldAlgorithm::barelyMoved(btScalar motion) const {
   return motion < kRestingMotion * m_threshold;
 }
 
+bool ManifoldAlgorithm::holdsContacts() const {
+  return m_manifold && m_manifold->getNumContacts() > 0;
+}
+
 bool ManifoldAlgorithm::contactsStillHold(btScalar motion) const {
-  return m_lastRun != 0 && m_manifold && m_manifold->getNumContacts() > 0 &&
+  return m_lastRun != 0 && holdsContacts() &&
          m_speculative == 0 && barelyMoved(motion);
 }
 

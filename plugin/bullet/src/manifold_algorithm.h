@@ -101,6 +101,8 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// made when the pair last ran, its manifold still holds some, it barelyMoved(motion),
   /// and neither body is fast enough for speculative contacts.
   bool contactsStillHold(btScalar motion) const;
+  /// Whether the pair's manifold holds any contact (a skipped pair keeps those).
+  bool holdsContacts() const;
   /// The sum of the contact normals the pair's manifold holds (Bullet's normal on body 1,
   /// pointing towards body 0); zero before its first contacts. Read on any thread before
   /// the pair writes its contacts: only the pair writes its manifold.
@@ -158,8 +160,6 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// Writes `selection` into the pair's manifold through `result` and refreshes the
   /// manifold's points for the bodies' poses: how a gathered pair's collideNow ends.
   void writeSelection(detail::ContactSelection& selection, btManifoldResult& result);
-  /// The pair's manifold, or null before its first dispatch; reading it makes nothing.
-  const btPersistentManifold* existingManifold() const { return m_manifold; }
   /// The manifold of this step's speculative contacts, or null when there are none to make.
   btPersistentManifold* speculativeManifold() const {
     return m_speculative > 0 ? m_secondManifold : nullptr;
