@@ -11,6 +11,7 @@
 #include "contact_reduction.h"
 #include "conversions.h"
 #include "frame_scheduler.h"
+#include "near_face_corners.h"
 #include "pair_contacts.h"
 #include "speculative_result.h"
 
@@ -93,23 +94,8 @@ void spreadSpeculativeContacts(const MeshShape& mesh0, const btTransform& transf
   const MeshShape& mesh = onB ? mesh1 : mesh0;
   const btTransform& pose = onB ? transform1 : transform0;
   const btVector3 towardsOther = onB ? nearest.normalOnB : -nearest.normalOnB;
-  const Node& root = mesh.tree().root();
-  const Vec3 origin = mesh.tree().origin();
-  btVector3 corners[8];
-  btScalar reach[8];
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 local(k & 1 ? root.boxHi().x() : root.boxLo().x(),
-                     k & 2 ? root.boxHi().y() : root.boxLo().y(),
-                     k & 4 ? root.boxHi().z() : root.boxLo().z());
-    corners[k] = pose(toBt(local + origin));
-    reach[k] = corners[k].dot(towardsOther);
-  }
-  // The four corners farthest towards the other body: the face that meets it.
-  int order[8] = {0, 1, 2, 3, 4, 5, 6, 7};
-  std::sort(order, order + 8, [&](int x, int y) { return reach[x] > reach[y]; });
-  for (int k = 0; k < 4; ++k) {
+  for (const btVector3& corner : detail::nearFaceCorners(mesh, pose, towardsOther)) {
     detail::PendingContact c = nearest;
-    const btVector3& corner = corners[order[k]];
     c.pointOnB = onB ? corner : corner - nearest.normalOnB * nearest.distance;
     c.featureA = c.featureB = -1;
     points.push_back(c);

@@ -14,6 +14,7 @@
 
 #include "adb/bullet/mesh_shape.h"
 #include "contact_selection.h"
+#include "near_face_corners.h"
 
 namespace adb {
 
@@ -98,24 +99,9 @@ std::uint64_t MeshPlaneAlgorithm::gather(const btCollisionObjectWrapper* body0,
     // at 100). The four lowest corners of its root box at the closest vertex's distance
     // (a hair less: the deepest, kept and written first) hold the whole face; no corner
     // claims more depth than the mesh has.
-    const Node& root = tree.root();
-    double height[8];
-    btVector3 at[8];
-    for (int k = 0; k < 8; ++k) {
-      const Vec3 x(k & 1 ? root.boxHi().x() : root.boxLo().x(),
-                   k & 2 ? root.boxHi().y() : root.boxLo().y(),
-                   k & 4 ? root.boxHi().z() : root.boxLo().z());
-      height[k] = n.dot(x);
-      const Vec3 m = x + tree.origin();
-      at[k] = meshPose(btVector3(static_cast<btScalar>(m.x()), static_cast<btScalar>(m.y()),
-                                 static_cast<btScalar>(m.z())));
-    }
-    int order[8] = {0, 1, 2, 3, 4, 5, 6, 7};
-    std::sort(order, order + 8, [&](int x, int y) { return height[x] < height[y]; });
     const btScalar distance = std::nextafter(static_cast<btScalar>(closest),
                                              -std::numeric_limits<btScalar>::infinity());
-    for (int k = 0; k < 4; ++k) {
-      const btVector3& onMesh = at[order[k]];
+    for (const btVector3& onMesh : detail::nearFaceCorners(*mesh, meshPose, -nWorld)) {
       const btVector3 onPlane = onMesh - nWorld * distance;
       selection.add({normalOnB, m_swapped ? onMesh : onPlane, distance, -1});
     }
