@@ -106,7 +106,8 @@ class FrameScheduler {
   /// job(i) for i in [0, jobs) on the pool, its time added to the step's statistics.
   template <class Job>
   void runOnPool(std::size_t jobs, Job& job);
-  /// Whether a pair runs whatever the budget: it has speculative contacts.
+  /// Whether a pair runs whatever the budget: it has speculative contacts, or had them
+  /// within the last ManifoldAlgorithm::kLandingSteps steps (its body is landing).
   static bool sweeps(const DeferredPair& pair);
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);
