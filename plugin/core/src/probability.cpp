@@ -1,6 +1,8 @@
 // Balls-into-bins probabilities (paper §3.6.1-3.6.3), exact in double for u <= kMaxBins.
 #include "adb/core/probability.h"
 
+#include "probability_tables.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -151,6 +153,15 @@ double pointProbability(const FactorialTables& f, int u, int v, int w, int t) {
 }
 
 }  // namespace
+
+namespace detail {
+
+void prepareProbabilityTables() {
+  logFactorials();
+  factorials();
+}
+
+}  // namespace detail
 
 CollisionEstimate estimateCollision(int s, int sA, int sB, double lb) {
   const Bins b = clampBins(s, sA, sB);

@@ -50,10 +50,21 @@
 #include "format_number.h"
 #include "pair_probability.h"
 #include "priority_table.h"
+#include "probability_tables.h"
 #include "traversal_front.h"
 
 namespace adb {
 namespace {
+
+// The tables behind the ADB key and the probabilities, built when the library loads rather
+// than on first use, inside the first query's clock: a process's first query under a 50 us
+// budget evaluated 1 node pair in 0.5 to 2.6 ms and answered from the roots
+// (ColdStart.TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond).
+[[maybe_unused]] const bool kQueryTablesReady = [] {
+  detail::priorityTable();
+  detail::prepareProbabilityTables();
+  return true;
+}();
 
 using Clock = std::chrono::steady_clock;
 using Entry = OpenPair;
