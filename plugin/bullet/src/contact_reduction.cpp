@@ -83,7 +83,7 @@ void reduceContacts(ContactPoints& points, const ContactGroups& groups, bool cut
   // Whether candidate i may still be chosen: apart from the chosen ones, within the room.
   // A plausible point only where the pair knows no exact one, this step's or kept: it
   // guesses where the surfaces may meet, and a guess beside a known contact only pushes.
-  const bool knowsExact = room < capacity || (candidates > 0 && !points[0].softened);
+  const bool knowsExact = room < capacity || !points[0].softened;  // sorted: exact first
   const auto eligible = [&](int i) {
     if (!(chosen < room && nearest[i] > apart)) return false;
     return !(knowsExact && points[static_cast<std::size_t>(i)].softened);

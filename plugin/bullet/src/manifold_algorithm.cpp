@@ -10,10 +10,10 @@
 #include <limits>
 
 #include "adb/bullet/dispatcher.h"
-#include "pair_contacts.h"
 #include "contact_selection.h"
 #include "conversions.h"
 #include "frame_scheduler.h"
+#include "pair_contacts.h"
 #include "speculative_result.h"
 
 namespace adb {
@@ -109,12 +109,7 @@ void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
                                          const btCollisionObjectWrapper* body1) {
   if (!m_manifold) return;
   btManifoldResult result(body0, body1);
-  result.setPersistentManifold(m_manifold);
-  result.refreshContactPoints();
-  if (btPersistentManifold* second = secondGroupManifold()) {
-    result.setPersistentManifold(second);
-    result.refreshContactPoints();
-  }
+  detail::refreshContactGroups(result, contactGroups());
 }
 
 detail::ContactGroups ManifoldAlgorithm::contactGroups() const {

@@ -271,6 +271,10 @@ void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
       }
     }
   }
+  refreshContactGroups(out, groups);
+}
+
+void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups) {
   for (int g = groups.count - 1; g >= 0; --g) {
     out.setPersistentManifold(groups.manifolds[g]);
     out.refreshContactPoints();

@@ -66,6 +66,10 @@ struct ContactGroups {
   int count = 0;
 };
 
+/// Re-measures every group's points at the bodies' poses (Bullet's refreshContactPoints,
+/// through `out`, whose manifold it leaves on the first group).
+void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups);
+
 /// Writes `points` through `out` (btManifoldResult or a SpeculativeResult) in place of what
 /// the `groups` held, in order, each with its features and the wrappers' part ids
 /// (`partId0`, `partId1`), filling each group's manifold before the next, and sets the
