@@ -54,6 +54,43 @@ TEST(ExactMode, AgreesWithBruteForceOnTorusKnot) {
   EXPECT_GT(d.collisions, d.queries / 5);
 }
 
+// Slivers: a cylinder of long thin side triangles (51:1) and fan caps, whose leaves' boxes
+// are mostly empty: the occupied cells (node_occupancy.h) part pairs the boxes cannot, and
+// must never part a pair whose triangles meet.
+TriangleMesh sliverCylinder() { return gen::makeCylinder(0.3, 2.0, 48, 1, 1); }
+
+TEST(ExactMode, AgreesWithBruteForceOnSlivers) {
+  const auto d = compareWithBruteForce(sliverCylinder(), 12);
+  EXPECT_EQ(d.wrong, 0);
+  EXPECT_GT(d.collisions, d.queries / 5);
+  EXPECT_LT(d.collisions, d.queries * 4 / 5);
+}
+
+TEST(ExactMode, CollectsEveryIntersectingPairOfSlivers) {
+  const TriangleMesh mesh = sliverCylinder();
+  AdbTree tree(mesh);
+  QueryScratch scratch;
+  std::mt19937_64 rng(test::kSeed);
+  int collided = 0;
+  for (int i = 0; i < 60; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.3 + 0.02 * i, rng);
+    const QueryResult r = collide(tree, p.a, tree, p.b, test::collectEverySettings(), scratch);
+    std::size_t expected = 0;
+    for (const Triangle& ta : mesh.triangles()) {
+      for (const Triangle& tb : mesh.triangles()) {
+        expected += trianglesIntersect(
+            p.a.apply(mesh.vertices()[ta[0]]), p.a.apply(mesh.vertices()[ta[1]]),
+            p.a.apply(mesh.vertices()[ta[2]]), p.b.apply(mesh.vertices()[tb[0]]),
+            p.b.apply(mesh.vertices()[tb[1]]), p.b.apply(mesh.vertices()[tb[2]]));
+      }
+    }
+    EXPECT_EQ(r.witnessCount, expected) << "pose " << i;
+    collided += expected > 0 ? 1 : 0;
+  }
+  EXPECT_GT(collided, 10);
+  EXPECT_LT(collided, 55);
+}
+
 QuerySettings mostCellsFirst() {
   QuerySettings s = test::exactSettings();
   s.descent = ExactDescent::MostCellsFirst;

@@ -1,5 +1,7 @@
 #include "pair_kernel.h"
 
+#include "node_occupancy.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,8 +9,33 @@
 
 namespace adb::detail {
 
+unsigned PairKernel::cellsApart(unsigned mask, double grow) const {
+  unsigned apart = 0;
+  for (int i = 0; i < m_a.count; ++i) {
+    for (int j = 0; j < m_b.count; ++j) {
+      const int p = index(i, j);
+      if (((mask >> p) & 1u) == 0) continue;
+      Vec3 lo, hi;  // B's node j in A's frame, then A's node i in B's
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = m_b.cOther[k].lane(j) - m_b.hOther[k].lane(j) - grow;
+        hi[k] = m_b.cOther[k].lane(j) + m_b.hOther[k].lane(j) + grow;
+      }
+      if (!occupiedWithin(*m_a.node[i], *m_a.cells[i], lo, hi)) {
+        apart |= 1u << p;
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = m_a.cOther[k].lane(i) - m_a.hOther[k].lane(i) - grow;
+        hi[k] = m_a.cOther[k].lane(i) + m_a.hOther[k].lane(i) + grow;
+      }
+      if (!occupiedWithin(*m_b.node[j], *m_b.cells[j], lo, hi)) apart |= 1u << p;
+    }
+  }
+  return apart;
+}
+
 unsigned PairKernel::measure(double separation[4]) {
-  const unsigned mask = overlapMask();
+  const unsigned mask = boxAndSlabMask();
   mapA();
   slabs();
   unsigned overlaps = 0;

@@ -37,6 +37,8 @@ struct PosedNodes {
   Lanes reach[3];              // |slab normal| along the other frame's axes: a box of half
                                // extents h' (other frame) reaches reach . h' along the normal
   const NodeDistribution* d[2];
+  const Node* node[2];
+  const NodeOccupancy* cells[2];  // occupancy (node_occupancy.h)
   int count;
 };
 
@@ -62,8 +64,29 @@ class PairKernel {
   static constexpr int index(int i, int j) { return 2 * i + j; }
 
   /// Bit index(i, j) set where the pair is not proven apart by any test (see the file
-  /// comment).
+  /// comment): the boxes and slabs, then the cells each node's triangles touch.
   unsigned overlapMask() {
+    const unsigned mask = boxAndSlabMask();
+    return mask & ~apartByCells(mask);
+  }
+
+  /// Bits of the pairs in `mask` whose nodes' occupied cells prove them apart: where the part
+  /// of one node's box that the other's box (posed, grown by the slack) can reach holds no
+  /// cell its triangles touch (node_occupancy.h). Not a distance: measure() leaves it out.
+  unsigned apartByCells(unsigned mask) { return apartByCellsWithin(mask, 0.0); }
+  /// The same with the region each node's posed box reaches in the other's frame shrunk by
+  /// `shrink` (>= 0): a pair not reported apart keeps its cells meeting under any motion that
+  /// moves no point by more than `shrink` (the posed box's faces move no further), which lets
+  /// a traversal front certify the cell test together with the boxes' overlap.
+  unsigned apartByCellsWithin(unsigned mask, double shrink) {
+    if (mask == 0) return 0;
+    mapA();
+    return cellsApart(mask, m_frame.slack - shrink);
+  }
+
+  /// The pairs that the boxes and slabs leave overlapping: the tests that measure() turns
+  /// into distances.
+  unsigned boxAndSlabMask() {
     const Lanes slack = Lanes::all(m_frame.slack);
     const unsigned present = m_b.count == 2 ? 3u : 1u;
     // A's face axes: B's boxes in A's frame against A's node i.
@@ -108,12 +131,18 @@ class PairKernel {
   }
 
  private:
+  unsigned cellsApart(unsigned mask, double grow) const;
+
   // Boxes of nodes ids[0..count) (the last repeated in an unused lane) in their own frame:
   // centre and half extents in double, as Node::boxLo/boxHi give them.
   static void loadBoxes(const AdbTree& tree, const std::uint32_t* ids, int count,
                         PosedNodes& n) {
     const Node& n0 = tree.nodes()[ids[0]];
     const Node& n1 = tree.nodes()[ids[count - 1]];
+    n.node[0] = &n0;
+    n.node[1] = &n1;
+    n.cells[0] = &tree.occupancy()[ids[0]];
+    n.cells[1] = &tree.occupancy()[ids[count - 1]];
     Lanes first[4], last[4];  // lo x y z, hi x; then lo z, hi x y z
     loadFloatPairs(n0.lo, n1.lo, first);
     loadFloatPairs(n0.lo + 2, n1.lo + 2, last);

@@ -706,7 +706,9 @@ struct Traversal::Impl {
   int orderedChildren(const Expansion& x, bool measure, ChildTest out[4]) {
     detail::PairKernel pairs = pairsOf(x);
     double separation[4] = {0.0, 0.0, 0.0, 0.0};
-    const unsigned mask = measure ? pairs.measure(separation) : pairs.overlapMask();
+    unsigned mask = measure ? pairs.measure(separation) : pairs.boxAndSlabMask();
+    mask &= ~pairs.apartByCells(mask);
+    if (measure) keepCertainCells(pairs, mask, separation);
     const int count = x.countA * x.countB;
     work.nodePairs += static_cast<std::uint64_t>(count);
     // In the trees' order, last child first: each pair goes straight to its place.
@@ -719,6 +721,18 @@ struct Traversal::Impl {
     }
     if (deepestFirst && mask != 0) sortDeepestLast(pairs, x, out, count);
     return count;
+  }
+
+  // The cells are no distance. A pair they part keeps its boxes' measure, which certifies
+  // nothing for a pair reported apart (a walk tests it again); an overlapping pair keeps its
+  // certificate only where the cells still meet with the region shrunk by what it would
+  // certify, so that a walk need not test the cells of a pair it trusts.
+  void keepCertainCells(detail::PairKernel& pairs, unsigned overlapping, double separation[4]) {
+    for (int p = 0; p < 4; ++p) {
+      if (((overlapping >> p) & 1u) == 0) continue;
+      const double held = -separation[p] - motion;
+      if (held > 0.0 && pairs.apartByCellsWithin(1u << p, held) != 0) separation[p] = 0.0;
+    }
   }
 
   // Deepest first: the pairs sorted by their boxes' overlap depth, the deepest last (the
@@ -771,7 +785,7 @@ struct Traversal::Impl {
         if (c.apart(reach)) {
           overlaps = false;
         } else if (c.overlapping(reach)) {
-          overlaps = true;
+          overlaps = true;  // boxes and cells (keepCertainCells)
         } else {
           if (!budgetLeft(1)) {
             cutWalk();
@@ -908,10 +922,12 @@ struct Traversal::Impl {
   bool testPair(detail::FrontEntry& c) {
     ++work.nodePairs;
     double separation[4];
-    const bool overlaps =
-        detail::PairKernel(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame).measure(separation) != 0;
-    c.certificate = certify(overlaps, separation[0]);
-    return overlaps;
+    detail::PairKernel pair(*a.tree, &c.a, 1, *b.tree, &c.b, 1, frame);
+    unsigned mask = pair.measure(separation);
+    mask &= ~pair.apartByCells(mask);
+    keepCertainCells(pair, mask, separation);
+    c.certificate = certify(mask != 0, separation[0]);
+    return mask != 0;
   }
 
   // Appends an entry to the record; returns where it went.

@@ -11,6 +11,7 @@
 
 #include "cell_count.h"
 #include "format_number.h"
+#include "node_occupancy.h"
 #include "tree_builder.h"
 
 namespace adb {
@@ -84,6 +85,7 @@ AdbTree::AdbTree(const TriangleMesh& mesh, const BuildSettings& settings) : m_se
   detail::buildHierarchy(*this, mesh, settings.maxLeafTriangles);
   detail::computeSurfaces(*this);
   detail::computeSlabs(*this);
+  detail::computeOccupancy(*this);
   m_hierarchySeconds = secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
   if (settings.counting == CellCounting::Exact) {
@@ -97,6 +99,7 @@ AdbTree::AdbTree(const TriangleMesh& mesh, const BuildSettings& settings) : m_se
 std::size_t AdbTree::memoryBytes() const {
   return m_nodes.capacity() * sizeof(Node) + m_surfaces.capacity() * sizeof(NodeSurface) +
          m_distributions.capacity() * sizeof(NodeDistribution) +
+         m_occupancy.capacity() * sizeof(NodeOccupancy) +
          m_vertices.capacity() * sizeof(Vec3) + m_triangles.capacity() * sizeof(Triangle) +
          m_meshTriangle.capacity() * sizeof(std::uint32_t);
 }

@@ -13,6 +13,7 @@ struct TreeBuilderAccess {
   static NodeArray<Node>& nodes(AdbTree& t) { return t.m_nodes; }
   static std::vector<NodeSurface>& surfaces(AdbTree& t) { return t.m_surfaces; }
   static NodeArray<NodeDistribution>& distributions(AdbTree& t) { return t.m_distributions; }
+  static std::vector<NodeOccupancy>& occupancy(AdbTree& t) { return t.m_occupancy; }
   static std::vector<Vec3>& vertices(AdbTree& t) { return t.m_vertices; }
   static std::vector<Triangle>& triangles(AdbTree& t) { return t.m_triangles; }
   static std::vector<std::uint32_t>& meshTriangle(AdbTree& t) { return t.m_meshTriangle; }

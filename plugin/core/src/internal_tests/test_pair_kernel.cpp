@@ -55,7 +55,7 @@ void compareExpansion(const AdbTree& ta, const std::uint32_t* ca, int countA, co
                       const std::uint32_t* cb, int countB, const detail::RelativeFrame& frame,
                       Comparison& c) {
   detail::PairKernel kernel(ta, ca, countA, tb, cb, countB, frame);
-  const unsigned mask = kernel.overlapMask();
+  const unsigned mask = kernel.boxAndSlabMask();  // the reference has no cells
   double depth[4] = {};
   if (mask != 0) kernel.boxDepths(depth);
   detail::CellCounts counts[4];

@@ -58,8 +58,14 @@ detail::PairEstimate estimate(const DepthTree& a, std::uint32_t ia, const Pose& 
                               const DepthTree& b, std::uint32_t ib, const Pose& poseB) {
   const detail::RelativeFrame frame = detail::RelativeFrame::between(a.tree, poseA, b.tree,
                                                                      poseB);
-  return detail::estimatePair(a.constants(), ia, a.depth[ia], b.constants(), ib, b.depth[ib],
-                              frame);
+  // The model's estimate of two overlapping boxes: the boxes and slabs decide the overlap
+  // here, not the occupied cells, which would part some of the hand-built pairs.
+  detail::PairKernel pair(a.tree, &ia, 1, b.tree, &ib, 1, frame);
+  if (pair.boxAndSlabMask() == 0) return detail::PairEstimate{};
+  detail::CellCounts counts[4];
+  pair.cellCounts(1u, counts);
+  return detail::estimateOverlapping(counts[0], a.depth[ia], b.depth[ib], a.tree.maxDepth(),
+                                     b.tree.maxDepth());
 }
 
 // The pose of tree B that puts B's local point `pointB` at A's local point `targetA`, B's

@@ -85,6 +85,19 @@ struct NodeDistribution {
 };
 static_assert(sizeof(NodeDistribution) == 32, "NodeDistribution layout");
 
+/// Which of 64 cells of a node's box the triangles below it touch: a bounding volume made of
+/// cells, read by the traversal after the box and slab tests pass (the pair is apart when the
+/// part of either node's box the other can reach holds no touched cell). 24 bytes.
+struct NodeOccupancy {
+  std::uint64_t cells;     //  8 bytes: bit set where some triangle below the node may reach
+                           //           the cell; x + (y << shift[0]) + (z << (shift[0] +
+                           //           shift[1])) indexes cell (x, y, z)
+  float scale[3];          // 12 bytes: slices per local unit along each axis (0: flat axis)
+  std::uint8_t shift[3];   //  3 bytes: 2^shift[k] slices along axis k; the shifts sum to 6
+  std::uint8_t spare;      //  1 byte
+};
+static_assert(sizeof(NodeOccupancy) == 24, "NodeOccupancy layout");
+
 /// Node records laid out so that siblings share a cache line (SiblingPairAllocator).
 template <class T>
 using NodeArray = std::vector<T, detail::SiblingPairAllocator<T>>;
@@ -99,6 +112,8 @@ class AdbTree {
   const NodeArray<Node>& nodes() const { return m_nodes; }
   const std::vector<NodeSurface>& surfaces() const { return m_surfaces; }
   const NodeArray<NodeDistribution>& distributions() const { return m_distributions; }
+  /// Per node, which of 64 cells of its box its triangles touch.
+  const std::vector<NodeOccupancy>& occupancy() const { return m_occupancy; }
   const Node& root() const { return m_nodes[0]; }
 
   /// Vertices in local coordinates: mesh coordinates minus origin().
@@ -113,7 +128,7 @@ class AdbTree {
   const BuildSettings& settings() const { return m_settings; }
   int maxDepth() const { return m_maxDepth; }
   std::size_t triangleCount() const { return m_triangles.size(); }
-  /// Bytes held by the tree's arrays (nodes, surfaces, triangles, vertices).
+  /// Bytes held by the tree's arrays (nodes, surfaces, occupancy, triangles, vertices).
   std::size_t memoryBytes() const;
   /// Wall-clock seconds spent building the hierarchy and counting cells.
   double hierarchySeconds() const { return m_hierarchySeconds; }
@@ -125,6 +140,7 @@ class AdbTree {
   NodeArray<Node> m_nodes;
   std::vector<NodeSurface> m_surfaces;
   NodeArray<NodeDistribution> m_distributions;
+  std::vector<NodeOccupancy> m_occupancy;
   std::vector<Vec3> m_vertices;
   std::vector<Triangle> m_triangles;
   std::vector<std::uint32_t> m_meshTriangle;
