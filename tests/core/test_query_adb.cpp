@@ -449,3 +449,33 @@ TEST(ColdStart, TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond) {
 
 }  // namespace
 }  // namespace adb
+
+namespace adb {
+namespace {
+
+// A scratch's buffers are sized by the trees when it meets them, not by the first query:
+// exact-mode queries from a far pose to deep overlaps, witnesses capped at their default,
+// never grow it past what the first (which found nothing) reserved.
+TEST(ColdStart, AnExactScratchIsSizedByTheTreesNotByItsFirstQuery) {
+  const TriangleMesh mesh = gen::makeModel("knot", 20000);
+  const AdbTree tree(mesh);
+  QuerySettings settings = test::exactSettings();
+  settings.stopAtFirstHit = false;  // fill the witnesses (64 by default)
+  QueryScratch scratch;
+  const QueryResult far =
+      collide(tree, Pose{}, tree, Pose{Mat3::Identity(), Vec3(50, 0, 0)}, settings, scratch);
+  ASSERT_FALSE(far.collides);
+  const std::size_t sized = scratch.capacityBytes();
+  EXPECT_GT(sized, 0u);
+  std::mt19937_64 rng(test::kSeed);
+  int collided = 0;
+  for (int i = 0; i < 40; ++i) {
+    const PosePair p = benchmarkPoses(mesh.bounds(), 0.1 + 0.05 * i, rng);
+    collided += collide(tree, p.a, tree, p.b, settings, scratch).collides ? 1 : 0;
+  }
+  EXPECT_GT(collided, 5);
+  EXPECT_EQ(scratch.capacityBytes(), sized);
+}
+
+}  // namespace
+}  // namespace adb

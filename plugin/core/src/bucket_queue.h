@@ -47,6 +47,12 @@ class BucketQueue {
     return e;
   }
 
+  /// Room for `perBucket` entries in every bucket, so that a first query allocates no more
+  /// than a later one would.
+  void reserve(std::size_t perBucket) {
+    for (std::vector<Entry>& b : m_buckets) b.reserve(perBucket);
+  }
+
   void clear() {
     forEachBucket([](std::vector<Entry>& b, int) { b.clear(); });
     m_occupied[0] = m_occupied[1] = 0;

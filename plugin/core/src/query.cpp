@@ -72,6 +72,10 @@ constexpr std::uint32_t kNoRegion = OpenPair::kNoRegion;
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
 // Trees deeper than this (a depth must fit QueueEntry's byte) are ordered by Eq. 3.
 constexpr int kMaxQueueDepth = 255;
+// Witness slots and ADB heap entries reserved when a scratch first meets its trees (more
+// grow on demand).
+constexpr std::size_t kReservedWitnesses = 128;
+constexpr std::size_t kReservedOpenPairs = 256;
 // Exact mode's stack entries carry no estimate until a budget stop asks for one.
 constexpr float kUnestimated = -1.0f;
 
@@ -259,6 +263,28 @@ struct Traversal::Impl {
   bool firstCheck = true;   // the first check reads the clock: a zero budget stops at once
   bool progressed = false;  // this step has expanded a pair (every step makes progress)
 
+  // Buffers sized by the trees before a query's clock starts, so that the first query of a
+  // scratch does not pay for growing them (issue 37): exact mode's stack (and a cut's open
+  // pairs) gain at most 3 pairs per level of the two trees (an expansion pops one and pushes
+  // up to 4), the witnesses at most maxWitnesses (kept to a page's worth: most queries find
+  // few), and ADB's queue about a pair per hundred nodes in each bucket (ADB mode's open
+  // pairs grow with the front, which no bound short of n m holds: beyond this they grow).
+  void reserveFor(const AdbTree& ta, const AdbTree& tb) {
+    const std::size_t nodes = ta.nodes().size() + tb.nodes().size();
+    if (nodes <= reservedNodes && (settings.mode != QueryMode::Adb || queueReserved)) return;
+    reservedNodes = std::max(reservedNodes, nodes);
+    const std::size_t levels = static_cast<std::size_t>(ta.maxDepth() + tb.maxDepth()) + 1;
+    stack.reserve(3 * levels + 1);
+    heap.reserve(std::max<std::size_t>(3 * levels + 1, kReservedOpenPairs));
+    witnesses.reserve(std::min<std::size_t>(settings.maxWitnesses, kReservedWitnesses));
+    if (settings.mode == QueryMode::Adb) {
+      queue.reserve(std::clamp<std::size_t>(nodes / 256, 8, 64));
+      queueReserved = true;
+    }
+  }
+  std::size_t reservedNodes = 0;  // the largest pair of trees reserveFor() sized for
+  bool queueReserved = false;
+
   void reset(const AdbTree& ta, const Pose& poseA, const AdbTree& tb, const Pose& poseB,
              const QuerySettings& s) {
     validate(s);
@@ -272,6 +298,7 @@ struct Traversal::Impl {
     // them proves the nodes farther apart than the margin.
     frame.slack += s.contactMargin;
     settings = s;
+    reserveFor(ta, tb);
     heap.clear();
     stack.clear();
     stackLowWater = 0;
