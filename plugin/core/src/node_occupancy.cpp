@@ -149,6 +149,7 @@ void computeOccupancy(AdbTree& tree) {
     const Node& n = nodes[i];
     NodeOccupancy o = occupancyLayout(n.boxHi() - n.boxLo());
     o.cells = 0;
+    o.triangles = static_cast<std::uint8_t>(std::min<std::uint32_t>(ranges[i].second - ranges[i].first, 255));
     if (n.isLeaf() || ranges[i].second - ranges[i].first <= kTrianglesTestedDirectly) {
       for (std::uint32_t t = ranges[i].first; t < ranges[i].second && o.cells != ~0ull; ++t) {
         o.cells |= cellsTouched(n, o, verts[tris[t][0]], verts[tris[t][1]], verts[tris[t][2]]);

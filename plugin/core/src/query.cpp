@@ -1160,9 +1160,7 @@ struct Traversal::Impl {
           notePruned(c.expected);
           continue;
         }
-        const bool leaves =
-            a.tree->nodes()[x.ca[i]].isLeaf() && b.tree->nodes()[x.cb[j]].isLeaf();
-        if (!leaves && possible && std::min(c.sA, c.sB) >= passing &&
+        if (possible && acceptable(x.ca[i], x.cb[j]) && std::min(c.sA, c.sB) >= passing &&
             collisionTailCouldExceed(c.s, c.sA, c.sB, passing, settings.pMin)) {
           const double eq3 = collisionLowerBound(c.s, c.sA, c.sB, lb);
           if (eq3 > settings.pMin && accept(x.ca[i], x.cb[j], eq3)) return true;
@@ -1265,9 +1263,8 @@ struct Traversal::Impl {
           notePruned(est.expected);
           continue;
         }
-        const bool leaves =
-            a.tree->nodes()[x.ca[i]].isLeaf() && b.tree->nodes()[x.cb[j]].isLeaf();
-        if (!leaves && est.lower > settings.pMin && accept(x.ca[i], x.cb[j], est.lower)) {
+        if (est.lower > settings.pMin && acceptable(x.ca[i], x.cb[j]) &&
+            accept(x.ca[i], x.cb[j], est.lower)) {
           return true;
         }
         push(est, x.ca[i], x.cb[j], childRegion(e.region, x.depthA, x.depthB), x.depthA,
@@ -1284,6 +1281,14 @@ struct Traversal::Impl {
     if (!hitEndsQuery()) return false;  // (stopAtFirstHit: no region fills)
     finish(true, 1.0, hitStop());
     return true;
+  }
+
+  // Whether a pair may be accepted on probability: not two leaves (their triangles decide),
+  // and each node with enough triangles for the model to hold (minTrianglesToAccept).
+  bool acceptable(std::uint32_t ia, std::uint32_t ib) const {
+    if (a.tree->nodes()[ia].isLeaf() && b.tree->nodes()[ib].isLeaf()) return false;
+    const int least = std::min(a.tree->occupancy()[ia].triangles, b.tree->occupancy()[ib].triangles);
+    return least >= settings.minTrianglesToAccept;
   }
 
   // A collision pair (p > p_min). Returns true when it is the k_min-th: the query is decided.
@@ -1451,6 +1456,10 @@ void validate(const QuerySettings& s) {
   if (!(s.pMin >= 0.0 && s.pMin <= 1.0)) {
     throw SettingsError("QuerySettings::pMin is " + detail::formatNumber(s.pMin) +
                         "; it must be in [0, 1]");
+  }
+  if (s.minTrianglesToAccept < 0 || s.minTrianglesToAccept > 255) {
+    throw SettingsError("QuerySettings::minTrianglesToAccept is " +
+                        std::to_string(s.minTrianglesToAccept) + "; it must be in 0..255");
   }
   if (s.kMin < 1) {
     throw SettingsError("QuerySettings::kMin is " + std::to_string(s.kMin) +

@@ -80,6 +80,14 @@ struct QuerySettings {
   double pMin = 0.99;
   /// Report "collision" once kMin collision pairs were found (paper: 1, 5, 10).
   int kMin = 10;
+  /// A node pair is a collision pair only when each of its nodes holds at least this many
+  /// triangles (0..255; 0 or 1: the paper, every inner pair). The probability model reads a
+  /// node's surface as many small polygons spread over its cells; a few large or long thin
+  /// triangles are not that, and pairs of them were accepted where the triangles pass each
+  /// other (issue 37: two copies of a 384-triangle pipe bundle answered 5.5 % of the poses
+  /// "collision" wrongly, most with confidence >= 0.9; 0 at 64). Below it the traversal goes
+  /// on to the triangles, which is cheap that near the leaves.
+  int minTrianglesToAccept = 64;
   /// Wall-clock budget in microseconds; infinity for none. 0 is valid: the roots only.
   double budgetMicros = std::numeric_limits<double>::infinity();
   /// Node pairs that may be evaluated (box test + probability); the reproducible budget.
@@ -95,12 +103,15 @@ struct QuerySettings {
   /// contacts come from the witnesses: the same witnesses as the whole query, in the same
   /// order, for less work. `collides` is certain either way.
   bool stopWhenWitnessesFull = false;
-  /// ADB mode: drop pairs whose boxes overlap but whose probability is 0 (the paper's rule,
-  /// and its main source of error). Off, they are queued last instead, so a traversal that
-  /// completes has tested every overlapping triangle pair (an exact answer, visited most
-  /// likely first) and a cut one leaves them in QueryScratch::openPairs(). Contact generation
-  /// under a frame budget runs with it off.
-  bool pruneImprobable = true;
+  /// ADB mode: drop pairs whose boxes overlap but whose probability is 0 (the paper's rule).
+  /// Off (the default), they are queued last instead, so a traversal that completes has tested
+  /// every overlapping triangle pair (an exact answer, visited most likely first) and a cut
+  /// one leaves them in QueryScratch::openPairs(). Pairs whose triangles' cells do not meet
+  /// are dropped either way, as a proof (AdbTree::occupancy()). The rule was the main source
+  /// of wrong "no" answers, most with confidence >= 0.99 on meshes of slivers (a cell crossed
+  /// by slivers holds too little area to count); since the cells prune, keeping the pairs
+  /// costs 0-12 % more node pairs (docs/probability-model.md, "Slivers and low-poly meshes").
+  bool pruneImprobable = false;
   /// ADB mode: keep accepted node pairs (p > pMin) as witnesses. Contact generation turns
   /// them off so that the witness slots hold intersecting triangle pairs only.
   bool nodeWitnesses = true;

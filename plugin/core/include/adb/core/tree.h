@@ -94,7 +94,7 @@ struct NodeOccupancy {
                            //           shift[1])) indexes cell (x, y, z)
   float scale[3];          // 12 bytes: slices per local unit along each axis (0: flat axis)
   std::uint8_t shift[3];   //  3 bytes: 2^shift[k] slices along axis k; the shifts sum to 6
-  std::uint8_t spare;      //  1 byte
+  std::uint8_t triangles;  //  1 byte:  triangles below the node, 255 for 255 or more
 };
 static_assert(sizeof(NodeOccupancy) == 24, "NodeOccupancy layout");
 
