@@ -1,4 +1,5 @@
-// The named benchmark models: each picks its parameters from a target triangle count.
+// The named models: the benchmark's, each picking its parameters from a target triangle count,
+// and the real-mesh ones ("slivers" from a target; "room" and "robot" at one resolution).
 #include "adb/support/mesh_generators.h"
 
 #include <algorithm>
@@ -66,11 +67,24 @@ TriangleMesh lockModel(double target) {
   return makeLockAssembly(best);
 }
 
+// A sliver cylinder whose side triangles stay about 100:1 at every target (FCL's env.obj has a
+// median of 125:1): with s segments and k rows, 2 s (k + 1) - 4 triangles and a side aspect
+// of about (h / k) / (2 pi r / s) = h target / (4 pi r k (k + 1)), so k (k + 1) is chosen
+// from the target and s absorbs the rounding.
+TriangleMesh sliversModel(double target) {
+  constexpr double kRadius = 0.25, kHeight = 1.8, kSideAspect = 100.0;
+  const double rowProduct = kHeight * target / (4.0 * kPi * kRadius * kSideAspect);
+  const int rows = roundedAtLeast(0.5 * (std::sqrt(1.0 + 4.0 * rowProduct) - 1.0), 1);
+  const int segments = roundedAtLeast((target + 4.0) / (2.0 * (rows + 1)), 3);
+  return makeSliverCylinder(kRadius, kHeight, segments, rows);
+}
+
 struct NamedModel {
   const char* name;
   TriangleMesh (*make)(double target);
 };
 
+// modelNames(): the benchmark's shapes.
 constexpr std::array<NamedModel, 6> kModels = {{
     {"pipes", pipesModel},
     {"gears", gearsModel},
@@ -79,6 +93,28 @@ constexpr std::array<NamedModel, 6> kModels = {{
     {"torus", torusModel},
     {"sphere", sphereModel},
 }};
+
+// Real meshes' triangles, following a target: makeModel builds them too.
+constexpr std::array<NamedModel, 1> kRealMeshModels = {{
+    {"slivers", sliversModel},
+}};
+
+struct FixedModel {
+  const char* name;
+  TriangleMesh (*make)();
+};
+
+constexpr std::array<FixedModel, 2> kFixedModels = {{
+    {"room", makeRoom},
+    {"robot", makeRobotArm},
+}};
+
+template <typename Table>
+std::string joinedNames(const Table& table) {
+  std::string names;
+  for (const auto& m : table) names += (names.empty() ? "" : ", ") + std::string(m.name);
+  return names;
+}
 
 // TriangleMesh has no setter for its name; a model is renamed by copying (once per makeModel).
 TriangleMesh named(const TriangleMesh& mesh, const std::string& name) {
@@ -93,14 +129,44 @@ std::vector<std::string> modelNames() {
   return names;
 }
 
+std::vector<std::string> realMeshModelNames() {
+  std::vector<std::string> names;
+  for (const NamedModel& m : kRealMeshModels) names.emplace_back(m.name);
+  for (const FixedModel& m : kFixedModels) names.emplace_back(m.name);
+  return names;
+}
+
+std::vector<std::string> fixedModelNames() {
+  std::vector<std::string> names;
+  for (const FixedModel& m : kFixedModels) names.emplace_back(m.name);
+  return names;
+}
+
 TriangleMesh makeModel(const std::string& name, std::size_t targetTriangles) {
   const double target = std::max(1.0, static_cast<double>(targetTriangles));
   for (const NamedModel& m : kModels) {
     if (name == m.name) return named(m.make(target), name);
   }
-  std::string known;
-  for (const NamedModel& m : kModels) known += (known.empty() ? "" : ", ") + std::string(m.name);
-  throw MeshError("makeModel: unknown model name \"" + name + "\"; known models: " + known);
+  for (const NamedModel& m : kRealMeshModels) {
+    if (name == m.name) return named(m.make(target), name);
+  }
+  for (const FixedModel& m : kFixedModels) {
+    if (name == m.name) {
+      throw MeshError("makeModel: \"" + name +
+                      "\" has one fixed resolution, not a target triangle count: "
+                      "build it with makeFixedModel");
+    }
+  }
+  throw MeshError("makeModel: unknown model name \"" + name + "\"; known models: " +
+                  joinedNames(kModels) + ", " + joinedNames(kRealMeshModels));
+}
+
+TriangleMesh makeFixedModel(const std::string& name) {
+  for (const FixedModel& m : kFixedModels) {
+    if (name == m.name) return named(m.make(), name);
+  }
+  throw MeshError("makeFixedModel: unknown model name \"" + name + "\"; known fixed models: " +
+                  joinedNames(kFixedModels));
 }
 
 }  // namespace adb::gen

@@ -1,6 +1,8 @@
 // Generated test geometry (namespace adb::gen): boxes, grids, spheres, tori, knots, gears, pipe
-// bundles and a lock assembly, plus the named benchmark models of makeModel(). Nothing is read
-// from files, so tests, demos and benchmarks all see the same meshes on every machine.
+// bundles and a lock assembly, plus the named benchmark models of makeModel(); and meshes shaped
+// like real scenes' ones (a sliver cylinder, a furnished room, a robot arm; named models too).
+// Nothing is read from files, so tests, demos and benchmarks all see the same meshes on every
+// machine.
 //
 // Conventions shared by every generator:
 //  - Closed shapes are watertight by index: every edge is used by exactly two triangles, once in
@@ -90,14 +92,67 @@ TriangleMesh makePipeBundle(int pipes, double length, double radius, double wall
 /// grows roughly with resolution^2 (about 12 * resolution^2 for large resolutions).
 TriangleMesh makeLockAssembly(int resolution);
 
+/// Closed cylinder along z, centred at the origin, triangulated the way CAD exporters write
+/// one: the side in heightSegments rows of quads split into two triangles, each cap a fan from
+/// one rim vertex (no centre vertex). Every triangle is long and thin: the side triangles'
+/// aspect (triangleAspect) is about (height / heightSegments) / (2 pi radius / segments), the
+/// caps' at least about segments / pi. Triangles: 2 * segments * (heightSegments + 1) - 4.
+TriangleMesh makeSliverCylinder(double radius, double height, int segments,
+                                int heightSegments = 1);
+
+/// A furnished room in the manner of FCL's test environment (its env.obj: 2,180 triangles,
+/// median aspect 125:1): the inside of a 6 x 6 x 3 box centred at the origin (floor at
+/// z = -1.5; floor, ceiling and four walls of two large triangles each, wound to face
+/// inward) holding furniture of boxes and sliver cylinders: a table and four chairs, a
+/// bookshelf, a sofa, a radiator under a window frame, a door frame, skirting boards, two
+/// pipes and a lamp under the ceiling. Closed by index (every part is, parts are not welded):
+/// the shell faces inward, so the signed volume is negative; each piece of furniture faces
+/// outward and stands inside the shell, at least 1 cm from it. Triangles: 1,512 (a fixed
+/// resolution); median aspect (triangleAspect) 23, 336 triangles above 100.
+TriangleMesh makeRoom();
+
+/// A low-poly robot arm, about 0.8 long (along x), 0.24 wide and 0.6 high, with its bounding
+/// box centred at the origin: a base, a turret, shoulder, elbow and wrist joints (cylinders
+/// as makeSliverCylinder's), upper arm and forearm links and a two-finger gripper (boxes),
+/// bent as if reaching forward and a little down. Each part is closed and outward; parts
+/// interpenetrate at the joints, as the lock assembly's do. Triangles: 296 (a fixed
+/// resolution).
+TriangleMesh makeRobotArm();
+
 /// The named benchmark models: "pipes", "gears", "lock", "knot", "torus", "sphere".
 std::vector<std::string> modelNames();
 
-/// The named model at a resolution whose triangle count is within about +-25 % of
-/// targetTriangles (checked for targets from 1,000 to 1,000,000; smaller targets get the
-/// coarsest sensible mesh, which may be larger). Throws MeshError for an unknown name; the
-/// message lists the known names.
+/// Named models with the triangles that real meshes bring (long slivers, large flat
+/// triangles) rather than the benchmark shapes' well-shaped ones: "slivers" (a
+/// makeSliverCylinder of radius 0.25 and height 1.8 whose side triangles stay about 100:1 at
+/// every target; built by makeModel like the models of modelNames()), then the
+/// fixedModelNames(). Kept out of modelNames(), whose six shapes the tools and tests iterate
+/// over as the paper's benchmark.
+std::vector<std::string> realMeshModelNames();
+
+/// The named models with one fixed resolution: "room" (makeRoom) and "robot" (makeRobotArm).
+/// Their triangle counts follow no target: makeFixedModel builds them, makeModel does not.
+std::vector<std::string> fixedModelNames();
+
+/// The named model (one of modelNames(), or "slivers") at a resolution whose triangle count
+/// is within about +-25 % of targetTriangles (checked for targets from 1,000 to 1,000,000;
+/// smaller targets get the coarsest sensible mesh, which may be larger). Throws MeshError for
+/// an unknown name; the message lists the known names (and names makeFixedModel for a fixed
+/// model).
 TriangleMesh makeModel(const std::string& name, std::size_t targetTriangles);
+
+/// The named fixed-resolution model (one of fixedModelNames()), named as asked. Throws
+/// MeshError for an unknown name; the message lists the known names.
+TriangleMesh makeFixedModel(const std::string& name);
+
+/// The aspect ratio of triangle i of `mesh`: its longest edge over its height onto that edge
+/// (longest^2 / (2 area)). 2 / sqrt(3) for an equilateral triangle, about L / w for a sliver L
+/// long and w wide; infinity for a degenerate one.
+double triangleAspect(const TriangleMesh& mesh, std::size_t i);
+
+/// The median of triangleAspect over the mesh's triangles (the upper median for an even
+/// count); 0 for a mesh without triangles.
+double medianAspect(const TriangleMesh& mesh);
 
 /// All meshes in one: vertices and triangles concatenated in order (indices offset), nothing
 /// welded. Throws MeshError when `meshes` is empty.
