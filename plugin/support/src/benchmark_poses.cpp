@@ -19,15 +19,37 @@ Eigen::Quaterniond randomRotation(std::mt19937_64& rng) {
                             a * std::cos(twoPi * u2), b * std::sin(twoPi * u3));
 }
 
+double benchmarkUnit(const Aabb& boundsA, const Aabb& boundsB) {
+  // u + u is exact and so is halving it: one box gives exactly benchmarkUnit(box).
+  return 0.5 * (benchmarkUnit(boundsA) + benchmarkUnit(boundsB));
+}
+
 PosePair benchmarkPoses(const Aabb& meshBounds, double distance, std::mt19937_64& rng) {
-  const Vec3 c = meshBounds.center();
-  const double unit = benchmarkUnit(meshBounds);
+  return benchmarkPoses(meshBounds, meshBounds, distance, rng);
+}
+
+PosePair benchmarkPoses(const Aabb& boundsA, const Aabb& boundsB, double distance,
+                        std::mt19937_64& rng) {
+  const Vec3 ca = boundsA.center(), cb = boundsB.center();
+  const double unit = benchmarkUnit(boundsA, boundsB);
   PosePair p;
   const Mat3 ra = randomRotation(rng).toRotationMatrix();
   const Mat3 rb = randomRotation(rng).toRotationMatrix();
   // Rotate about the bounding-box centre, then place the centres on the x axis.
-  p.a = Pose{ra, -(ra * c)};
-  p.b = Pose{rb, -(rb * c) + Vec3(distance * unit, 0.0, 0.0)};
+  p.a = Pose{ra, -(ra * ca)};
+  p.b = Pose{rb, -(rb * cb) + Vec3(distance * unit, 0.0, 0.0)};
+  return p;
+}
+
+PosePair insidePoses(const Aabb& boundsA, const Aabb& boundsB, std::mt19937_64& rng) {
+  const Mat3 rb = randomRotation(rng).toRotationMatrix();
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  Vec3 centre;
+  for (int k = 0; k < 3; ++k) {
+    centre[k] = boundsA.lo[k] + uni(rng) * (boundsA.hi[k] - boundsA.lo[k]);
+  }
+  PosePair p;  // a: the identity
+  p.b = Pose{rb, centre - rb * boundsB.center()};
   return p;
 }
 
