@@ -1,20 +1,37 @@
-// ADB and exact-mode queries on the shared per-model ADB-tree.
+// ADB and exact-mode queries on the shared per-model ADB-trees.
 #include "adb_method.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace adb::tradeoff {
 
-const AdbTree& SharedTree::treeFor(const Model& model) {
-  // Keyed by the model's command-line position, not its address: a later model may be
-  // allocated where an earlier one was.
-  if (!m_tree || m_modelIndex != model.index) {
-    m_tree.reset();  // free the old tree before building the next (1M-triangle models)
-    m_tree = std::make_unique<AdbTree>(model.mesh, m_settings);
-    m_modelIndex = model.index;
+const AdbTree* SharedTree::find(const Model& model) const {
+  for (const Held& h : m_trees) {
+    if (h.modelIndex == model.index) return h.tree.get();
   }
-  return *m_tree;
+  return nullptr;
+}
+
+void SharedTree::prepare(const Model& a, const Model& b) {
+  // Free the trees of other models before building (1M-triangle models).
+  m_trees.erase(std::remove_if(m_trees.begin(), m_trees.end(),
+                               [&](const Held& h) {
+                                 return h.modelIndex != a.index && h.modelIndex != b.index;
+                               }),
+                m_trees.end());
+  for (const Model* model : {&a, &b}) {
+    if (!find(*model)) {
+      m_trees.push_back(Held{model->index, std::make_unique<AdbTree>(model->mesh, m_settings)});
+    }
+  }
+}
+
+const AdbTree& SharedTree::treeFor(const Model& model) {
+  if (const AdbTree* held = find(model)) return *held;
+  prepare(model, model);
+  return *find(model);
 }
 
 AdbMethod::AdbMethod(std::shared_ptr<SharedTree> shared, const QuerySettings& settings,
@@ -39,10 +56,14 @@ MethodParams AdbMethod::params() const {
   return p;
 }
 
-void AdbMethod::prepare(const Model& model) { m_tree = &m_shared->treeFor(model); }
+void AdbMethod::prepare(const Model& a, const Model& b) {
+  m_shared->prepare(a, b);
+  m_treeA = &m_shared->treeFor(a);
+  m_treeB = &m_shared->treeFor(b);
+}
 
 Answer AdbMethod::query(const Pose& a, const Pose& b) {
-  const QueryResult r = collide(*m_tree, a, *m_tree, b, m_settings, m_shared->scratch());
+  const QueryResult r = collide(*m_treeA, a, *m_treeB, b, m_settings, m_shared->scratch());
   Answer answer;
   answer.collides = r.collides;
   answer.confidence = r.confidence;

@@ -1,10 +1,11 @@
 // The project's own ADB-tree as a measured method: the ADB traversal at one (p_min, k_min,
 // time or work budget) setting, or the tree's exact mode (with or without a time budget).
-// All of them share one tree per model.
+// All of them share one tree per model (two for a pair of different models).
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
@@ -13,20 +14,31 @@
 namespace adb::tradeoff {
 
 /// One ADB-tree per model, built once and shared by every ADB and exact method, with one
-/// QueryScratch reused by all their queries (so queries do not allocate).
+/// QueryScratch reused by all their queries (so queries do not allocate). It holds the trees
+/// of one case: one model's, or a pair's two.
 class SharedTree {
  public:
   /// Trees are built with `settings` (validated by the tree's constructor).
   explicit SharedTree(const BuildSettings& settings = {}) : m_settings(settings) {}
 
-  /// The tree of `model`, built when the model changes.
+  /// Holds the trees of `a` and `b` (one tree when they are one model), building what it
+  /// does not hold yet after freeing the trees of other models (1M-triangle models).
+  void prepare(const Model& a, const Model& b);
+  /// The tree of `model`: held since prepare(), else built as prepare(model, model) builds
+  /// it.
   const AdbTree& treeFor(const Model& model);
   QueryScratch& scratch() { return m_scratch; }
 
  private:
+  struct Held {
+    std::size_t modelIndex;  ///< Model::index, not the model's address: a later model may be
+                             ///< allocated where an earlier one was
+    std::unique_ptr<AdbTree> tree;
+  };
+  const AdbTree* find(const Model& model) const;
+
   BuildSettings m_settings;
-  std::size_t m_modelIndex = static_cast<std::size_t>(-1);
-  std::unique_ptr<AdbTree> m_tree;
+  std::vector<Held> m_trees;  ///< at most two
   QueryScratch m_scratch;
 };
 
@@ -40,14 +52,15 @@ class AdbMethod : public Method {
 
   const std::string& name() const override { return m_name; }
   MethodParams params() const override;
-  void prepare(const Model& model) override;
+  void prepare(const Model& a, const Model& b) override;
   Answer query(const Pose& a, const Pose& b) override;
 
  private:
   std::shared_ptr<SharedTree> m_shared;
   QuerySettings m_settings;
   std::string m_name;
-  const AdbTree* m_tree = nullptr;
+  const AdbTree* m_treeA = nullptr;
+  const AdbTree* m_treeB = nullptr;
 };
 
 }  // namespace adb::tradeoff

@@ -1,21 +1,25 @@
 // adb-tradeoff: what accuracy costs in time. Runs Zachmann's benchmark (two copies of each
-// model at a range of distances, seeded random orientations) through the ADB-tree's ADB
+// model, or a model and another one, at a range of distances, seeded random orientations; or
+// the second body anywhere in the first's bounding box, FCL's robot in a room) through the
+// ADB-tree's ADB
 // modes (sweeps of p_min, k_min and the time or work budget), its exact mode, Bullet's
 // GImpact and FCL, and opt-in baselines without probability (exact mode cut by a budget, a
 // box-first search, the root boxes alone), all on the same poses, and writes queries.csv
-// (every query, poses at full precision), summary.csv / summary.md (per model, method and
+// (every query, poses at full precision), summary.csv / summary.md (per case, method and
 // parameters; the budgets that reach 5 % and 1 % error), reliability.csv (calibration of
 // the confidences), cells.csv (the paper's Fig. 8), distances.csv (Figs. 9 and 10, judged) and, through
 // studies/tradeoff/plot_tradeoff.py, the plots. Format and procedure:
 // docs/benchmark.md. Timing policy: timing.h (also in --help).
 //
 // Exit status: 0 done, 2 usage error (nothing run), 1 input error (a mesh that cannot be
-// read or is invalid): models are processed in command-line order and the files describe
-// the models finished before the error.
+// read or is invalid): cases are processed in command-line order and the files describe
+// the cases finished before the error.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,14 +44,33 @@ void printError(const std::string& message) {
   std::fprintf(stderr, "adb-tradeoff: error: %s\n", message.c_str());
 }
 
-// Loads, measures and histograms one model; appends it to `done` and rewrites the reports.
-void studyModel(const Options& o, std::size_t index, StudyContext& context,
-                SharedTree& tree, std::vector<ModelResult>& done) {
+// The cell histograms of a pair's two trees as one (cells.csv has one histogram per case):
+// counts and node totals added, the coarser sampling stride kept.
+adb::CellHistogram combined(const adb::CellHistogram& a, const adb::CellHistogram& b) {
+  adb::CellHistogram sum = a;
+  for (std::size_t c = 0; c < sum.count.size(); ++c) sum.count[c] += b.count[c];
+  sum.nodesCounted += b.nodesCounted;
+  sum.nodesTotal += b.nodesTotal;
+  sum.stride = std::max(a.stride, b.stride);
+  sum.seconds += b.seconds;
+  return sum;
+}
+
+// Loads, measures and histograms one case (a model, or a model and the one it is tested
+// against); appends it to `done` and rewrites the reports.
+void studyCase(const Options& o, std::size_t index, StudyContext& context, SharedTree& tree,
+               std::vector<ModelResult>& done) {
   std::vector<std::string> warnings;
-  const Model model = loadModel(o.sources[index], index, warnings);
+  const StudyCase& c = o.cases[index];
+  // Model keys: 2 x the case's position, + 1 for its second model (Model::index).
+  const Model a = loadModel(c.a, 2 * index, warnings);
+  std::optional<Model> b;
+  if (c.b) b = loadModel(*c.b, 2 * index + 1, warnings);
   for (const std::string& w : warnings) context.progress.note("adb-tradeoff: warning: " + w);
-  ModelResult result = runModel(model, context);
-  result.cells = cellHistogram(tree.treeFor(model));
+  const Model& against = b ? *b : a;
+  ModelResult result = runCase(a, against, index, context);
+  result.cells = cellHistogram(tree.treeFor(a));
+  if (b) result.cells = combined(result.cells, cellHistogram(tree.treeFor(*b)));
   done.push_back(std::move(result));
   writeReports(o, done);
 }
@@ -69,17 +92,17 @@ int run(const Options& o) {
   auto tree = std::make_shared<SharedTree>(treeSettings(o));
   std::vector<std::unique_ptr<Method>> methods = makeMethods(o, tree);
   QueryCsv csv(o.outDir + "/queries.csv");
-  adb::tools::Progress progress(queriesPerModel(o, methods.size()) * o.sources.size(), "queries");
+  adb::tools::Progress progress(queriesPerCase(o, methods.size()) * o.cases.size(), "queries");
   StudyContext context{o, methods, csv, progress};
   std::vector<ModelResult> done;
-  writeReports(o, done);  // headers only: the files exist even if the first model fails
-  for (std::size_t i = 0; i < o.sources.size(); ++i) {
+  writeReports(o, done);  // headers only: the files exist even if the first case fails
+  for (std::size_t i = 0; i < o.cases.size(); ++i) {
     try {
-      studyModel(o, i, context, *tree, done);
+      studyCase(o, i, context, *tree, done);
     } catch (const std::exception& e) {
       progress.finish();
       printError(e.what());
-      std::fprintf(stderr, "adb-tradeoff: results of the %zu model(s) before it are in %s\n",
+      std::fprintf(stderr, "adb-tradeoff: results of the %zu case(s) before it are in %s\n",
                    done.size(), o.outDir.c_str());
       return kInputError;
     }

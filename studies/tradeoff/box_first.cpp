@@ -14,7 +14,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 }  // namespace
 
-// Tree B's local frame seen from tree A's (both trees are the model's one tree, posed twice).
+// Tree B's local frame seen from tree A's (for two copies of one model, both are its tree).
 struct BoxFirstMethod::Frame {
   Mat3 rBA, absBA, rAB, absAB;
   Vec3 tBA, tAB;
@@ -120,15 +120,18 @@ MethodParams BoxFirstMethod::params() const {
   return p;  // no estimate: its confidence is 1 (completed) or a fixed 0.5 (cut)
 }
 
-void BoxFirstMethod::prepare(const Model& model) {
-  m_tree = &m_shared->treeFor(model);
-  m_bounds = model.mesh.bounds();
+void BoxFirstMethod::prepare(const Model& a, const Model& b) {
+  m_shared->prepare(a, b);
+  m_treeA = &m_shared->treeFor(a);
+  m_treeB = &m_shared->treeFor(b);
+  m_boundsA = a.mesh.bounds();
+  m_boundsB = b.mesh.bounds();
 }
 
 BoxFirstMethod::Frame BoxFirstMethod::frameBetween(const Pose& a, const Pose& b) const {
   // World placement of the tree's local frame: world = R (x_local + origin) + t.
-  const Vec3 ta = a.apply(m_tree->origin());
-  const Vec3 tb = b.apply(m_tree->origin());
+  const Vec3 ta = a.apply(m_treeA->origin());
+  const Vec3 tb = b.apply(m_treeB->origin());
   // Exact inverses, not transposes: study poses are orthonormal only to rounding, and the
   // two directions must describe the same placement.
   const Mat3 worldToA = a.rotation.inverse();
@@ -139,43 +142,45 @@ BoxFirstMethod::Frame BoxFirstMethod::frameBetween(const Pose& a, const Pose& b)
   f.tAB = -(f.rAB * f.tBA);
   f.absBA = f.rBA.cwiseAbs();
   f.absAB = f.rAB.cwiseAbs();
-  const Node& root = m_tree->root();
-  const double radius =
-      std::max(root.boxLo().cwiseAbs().maxCoeff(), root.boxHi().cwiseAbs().maxCoeff());
-  f.slack = kRelativeSlack * (f.tBA.norm() + 2.0 * radius);
+  const auto radius = [](const Node& root) {
+    return std::max(root.boxLo().cwiseAbs().maxCoeff(), root.boxHi().cwiseAbs().maxCoeff());
+  };
+  f.slack = kRelativeSlack * (f.tBA.norm() + (radius(m_treeA->root()) + radius(m_treeB->root())));
   return f;
 }
 
 bool BoxFirstMethod::leavesIntersect(const Node& na, const Node& nb, const Frame& f,
                                      Budget& budget) const {
-  const auto& v = m_tree->localVertices();
-  const auto& t = m_tree->triangles();
+  const auto& va = m_treeA->localVertices();
+  const auto& ta = m_treeA->triangles();
+  const auto& vb = m_treeB->localVertices();
+  const auto& tb = m_treeB->triangles();
   // B's triangles mapped into A's frame, and the boxes of both leaves' triangles there, once
   // per leaf pair (a leaf holds at most 15; the slots a leaf does not use stay unwritten).
   Vec3 mapped[15][3];
   Vec3 loA[15], hiA[15], loB[15], hiB[15];
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
-    for (int k = 0; k < 3; ++k) mapped[j][k] = f.bToA(v[t[nb.firstTriangle() + j][k]]);
+    for (int k = 0; k < 3; ++k) mapped[j][k] = f.bToA(vb[tb[nb.firstTriangle() + j][k]]);
     loB[j] = mapped[j][0].cwiseMin(mapped[j][1]).cwiseMin(mapped[j][2]);
     hiB[j] = mapped[j][0].cwiseMax(mapped[j][1]).cwiseMax(mapped[j][2]);
     lo = lo.cwiseMin(loB[j]);
     hi = hi.cwiseMax(hiB[j]);
   }
   for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
-    const Triangle& ta = t[na.firstTriangle() + i];
-    loA[i] = v[ta[0]].cwiseMin(v[ta[1]]).cwiseMin(v[ta[2]]);
-    hiA[i] = v[ta[0]].cwiseMax(v[ta[1]]).cwiseMax(v[ta[2]]);
+    const Triangle& tri = ta[na.firstTriangle() + i];
+    loA[i] = va[tri[0]].cwiseMin(va[tri[1]]).cwiseMin(va[tri[2]]);
+    hiA[i] = va[tri[0]].cwiseMax(va[tri[1]]).cwiseMax(va[tri[2]]);
     lo = lo.cwiseMin(loA[i]);
     hi = hi.cwiseMax(hiA[i]);
   }
   const double gap = kTriangleGap * (hi - lo).maxCoeff();
   for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
-    const Triangle& ta = t[na.firstTriangle() + i];
+    const Triangle& tri = ta[na.firstTriangle() + i];
     for (std::uint32_t j = 0; j < nb.triangleCount(); ++j) {
       if (boxesApart(loA[i], hiA[i], loB[j], hiB[j], gap)) continue;
       budget.countTriangleTest();
-      if (trianglesIntersect(v[ta[0]], v[ta[1]], v[ta[2]], mapped[j][0], mapped[j][1],
+      if (trianglesIntersect(va[tri[0]], va[tri[1]], va[tri[2]], mapped[j][0], mapped[j][1],
                              mapped[j][2])) {
         return true;
       }
@@ -187,13 +192,13 @@ bool BoxFirstMethod::leavesIntersect(const Node& na, const Node& nb, const Frame
 void BoxFirstMethod::pushOverlappingChildren(const Entry& e, const Frame& f,
                                              std::int64_t& nodePairs) {
   std::uint32_t ca[2], cb[2];
-  const int countA = children(m_tree->nodes()[e.a], e.a, ca);
-  const int countB = children(m_tree->nodes()[e.b], e.b, cb);
+  const int countA = children(m_treeA->nodes()[e.a], e.a, ca);
+  const int countB = children(m_treeB->nodes()[e.b], e.b, cb);
   // Every child's box mapped into the other frame first: a child meets both children of the
   // other node, and the mapping is most of a pair test's cost.
   MappedBox a[2], b[2];
-  for (int i = 0; i < countA; ++i) a[i] = mapBox(m_tree->nodes()[ca[i]], f.rAB, f.absAB, f.tAB);
-  for (int j = 0; j < countB; ++j) b[j] = mapBox(m_tree->nodes()[cb[j]], f.rBA, f.absBA, f.tBA);
+  for (int i = 0; i < countA; ++i) a[i] = mapBox(m_treeA->nodes()[ca[i]], f.rAB, f.absAB, f.tAB);
+  for (int j = 0; j < countB; ++j) b[j] = mapBox(m_treeB->nodes()[cb[j]], f.rBA, f.absBA, f.tBA);
   for (int i = 0; i < countA; ++i) {
     for (int j = 0; j < countB; ++j) {
       ++nodePairs;
@@ -207,8 +212,8 @@ void BoxFirstMethod::pushOverlappingChildren(const Entry& e, const Frame& f,
 
 bool BoxFirstMethod::expand(const Entry& e, const Frame& f, Budget& budget,
                             std::int64_t& nodePairs) {
-  const Node& na = m_tree->nodes()[e.a];
-  const Node& nb = m_tree->nodes()[e.b];
+  const Node& na = m_treeA->nodes()[e.a];
+  const Node& nb = m_treeB->nodes()[e.b];
   if (na.isLeaf() && nb.isLeaf()) return leavesIntersect(na, nb, f, budget);
   pushOverlappingChildren(e, f, nodePairs);
   return false;
@@ -219,7 +224,7 @@ Answer BoxFirstMethod::query(const Pose& a, const Pose& b) {
   m_heap.clear();  // keeps its capacity: no allocation once grown
   Answer answer;   // "no collision", certain, until shown otherwise
   answer.nodePairs = 1;  // the roots' test
-  if (!rootBoxesOverlap(m_bounds, a, b)) return answer;
+  if (!rootBoxesOverlap(m_boundsA, a, m_boundsB, b)) return answer;
   const Frame f = frameBetween(a, b);
   m_heap.push_back(Entry{0.0, 0, 0});  // alone in the queue: its key is never compared
   while (!m_heap.empty()) {

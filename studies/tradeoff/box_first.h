@@ -1,4 +1,4 @@
-// "box-first": a best-first traversal of the same ADB-tree ordered by box overlap alone, with
+// "box-first": a best-first traversal of the same ADB-trees ordered by box overlap alone, with
 // no probability model. It is the baseline that tells whether ADB's probabilities pay for
 // themselves: same tree, same leaf triangle test, same budgets, but the queue is ordered by
 // a purely geometric measure and a cut query can only say "boxes still overlap".
@@ -20,6 +20,7 @@
 // Not handicapped against ADB: each expansion maps each child's box into the other frame
 // once (a child meets both children of the other node), and a leaf pair maps B's triangles
 // into A's frame and boxes both leaves' triangles once, as the core's leaf test does.
+// Tree A is the first model's and tree B the second's (the same tree for two copies).
 //
 // Uses only the public API of adb::AdbTree. The queue lives in the method and is reused,
 // so queries do not allocate once it has grown to a query's size.
@@ -43,7 +44,7 @@ class BoxFirstMethod : public Method {
 
   const std::string& name() const override { return m_name; }
   MethodParams params() const override;
-  void prepare(const Model& model) override;
+  void prepare(const Model& a, const Model& b) override;
   Answer query(const Pose& a, const Pose& b) override;
 
   /// The clock is read at the first pop and then once this much work has accumulated since
@@ -55,7 +56,7 @@ class BoxFirstMethod : public Method {
  private:
   struct Entry {
     double key;  ///< overlap volume of the two boxes in A's frame
-    std::uint32_t a, b;
+    std::uint32_t a, b;  ///< a node of tree A, a node of tree B
   };
   struct Frame;   // B's tree-local frame seen from A's
   struct Budget;  // the time budget and the work done since the clock was last read
@@ -73,8 +74,9 @@ class BoxFirstMethod : public Method {
   std::shared_ptr<SharedTree> m_shared;
   double m_budgetUs;
   std::string m_name = "box-first";
-  const AdbTree* m_tree = nullptr;
-  Aabb m_bounds;               ///< the mesh's bounding box, for the root test
+  const AdbTree* m_treeA = nullptr;
+  const AdbTree* m_treeB = nullptr;
+  Aabb m_boundsA, m_boundsB;   ///< the meshes' bounding boxes, for the root test
   std::vector<Entry> m_heap;   ///< scratch, kept between queries
 };
 

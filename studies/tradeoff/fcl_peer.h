@@ -1,4 +1,4 @@
-// FCL 0.7 as a measured peer: BVHModel<OBBRSS> of the model's triangles, boolean query that
+// FCL 0.7 as a measured peer: BVHModel<OBBRSS> of each model's triangles, boolean query that
 // stops at the first intersecting triangle pair (CollisionRequest(1, false)). Exact; the
 // independent oracle the tests check the ADB-tree's exact mode against.
 #pragma once
@@ -16,7 +16,7 @@ class FclPeer : public Method {
   ~FclPeer() override;
 
   const std::string& name() const override { return m_name; }
-  void prepare(const Model& model) override;
+  void prepare(const Model& a, const Model& b) override;
   Answer query(const Pose& a, const Pose& b) override;
 
  private:

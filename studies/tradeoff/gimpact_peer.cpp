@@ -1,5 +1,5 @@
 // GImpact peer. Choices:
-//  - The collision algorithm is created once per model (untimed) and reused for every query,
+//  - The collision algorithm is created once per case (untimed) and reused for every query,
 //    as a Bullet world keeps one per overlapping pair from frame to frame; each query times
 //    processCollision alone (GImpact clears and refills its manifold inside it).
 //  - The shape's collision margin is 0: the default margin (0.04 model units) would report
@@ -38,15 +38,27 @@ btTransform toBt(const Pose& p) {
                                       static_cast<btScalar>(t.z())));
 }
 
+// One model's GImpact shape. GImpact reads the mesh through the arrays: they must outlive the
+// shape (members are destroyed in reverse order).
+struct GimpactShape {
+  std::unique_ptr<TriangleArrays> arrays;
+  std::unique_ptr<btGImpactMeshShape> shape;
+
+  explicit GimpactShape(const TriangleMesh& mesh)
+      : arrays(std::make_unique<TriangleArrays>(mesh)),
+        shape(std::make_unique<btGImpactMeshShape>(arrays->array.get())) {
+    shape->setMargin(0);
+    shape->updateBound();  // builds the box tree once
+  }
+};
+
 }  // namespace
 
 struct GimpactPeer::Impl {
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher{&configuration};
   btDispatcherInfo dispatchInfo;
-  // GImpact reads the mesh through this interface: the arrays must outlive the shape.
-  std::unique_ptr<TriangleArrays> arrays;  // what the shape reads: outlives it
-  std::unique_ptr<btGImpactMeshShape> shape;
+  std::unique_ptr<GimpactShape> shapeA, shapeB;  // shapeB empty: two copies of shapeA
   btCollisionObject objectA, objectB;
   btCollisionAlgorithm* algorithm = nullptr;
   btManifoldArray manifolds;
@@ -61,20 +73,22 @@ struct GimpactPeer::Impl {
     algorithm = nullptr;
   }
 
-  void buildShape(const TriangleMesh& mesh) {
+  btGImpactMeshShape* shapeOfA() const { return shapeA->shape.get(); }
+  btGImpactMeshShape* shapeOfB() const { return (shapeB ? shapeB : shapeA)->shape.get(); }
+
+  void buildShapes(const Model& a, const Model& b) {
     releaseAlgorithm();
-    shape.reset();
-    arrays = std::make_unique<TriangleArrays>(mesh);
-    shape = std::make_unique<btGImpactMeshShape>(arrays->array.get());
-    shape->setMargin(0);
-    shape->updateBound();  // builds the box tree once
-    objectA.setCollisionShape(shape.get());
-    objectB.setCollisionShape(shape.get());
+    shapeA.reset();  // free the last case's shapes first
+    shapeB.reset();
+    shapeA = std::make_unique<GimpactShape>(a.mesh);
+    if (&a != &b) shapeB = std::make_unique<GimpactShape>(b.mesh);
+    objectA.setCollisionShape(shapeOfA());
+    objectB.setCollisionShape(shapeOfB());
   }
 
   void createAlgorithm() {
-    const btCollisionObjectWrapper a(nullptr, shape.get(), &objectA, objectA.getWorldTransform(), -1, -1);
-    const btCollisionObjectWrapper b(nullptr, shape.get(), &objectB, objectB.getWorldTransform(), -1, -1);
+    const btCollisionObjectWrapper a(nullptr, shapeOfA(), &objectA, objectA.getWorldTransform(), -1, -1);
+    const btCollisionObjectWrapper b(nullptr, shapeOfB(), &objectB, objectB.getWorldTransform(), -1, -1);
     algorithm = dispatcher.findAlgorithm(&a, &b, nullptr, BT_CONTACT_POINT_ALGORITHMS);
     if (!algorithm) throw std::runtime_error("Bullet found no GImpact algorithm");
   }
@@ -82,8 +96,8 @@ struct GimpactPeer::Impl {
   bool collide(const Pose& poseA, const Pose& poseB) {
     objectA.setWorldTransform(toBt(poseA));
     objectB.setWorldTransform(toBt(poseB));
-    const btCollisionObjectWrapper a(nullptr, shape.get(), &objectA, objectA.getWorldTransform(), -1, -1);
-    const btCollisionObjectWrapper b(nullptr, shape.get(), &objectB, objectB.getWorldTransform(), -1, -1);
+    const btCollisionObjectWrapper a(nullptr, shapeOfA(), &objectA, objectA.getWorldTransform(), -1, -1);
+    const btCollisionObjectWrapper b(nullptr, shapeOfB(), &objectB, objectB.getWorldTransform(), -1, -1);
     btManifoldResult result(&a, &b);
     algorithm->processCollision(&a, &b, dispatchInfo, &result);
     manifolds.resize(0);
@@ -98,8 +112,8 @@ struct GimpactPeer::Impl {
 GimpactPeer::GimpactPeer() : m_impl(std::make_unique<Impl>()) {}
 GimpactPeer::~GimpactPeer() = default;
 
-void GimpactPeer::prepare(const Model& model) {
-  m_impl->buildShape(model.mesh);
+void GimpactPeer::prepare(const Model& a, const Model& b) {
+  m_impl->buildShapes(a, b);
   m_impl->createAlgorithm();
 }
 

@@ -1,4 +1,4 @@
-// Bullet's GImpact as a measured peer: btGImpactMeshShape over the model's triangles and
+// Bullet's GImpact as a measured peer: btGImpactMeshShape over each model's triangles and
 // btGImpactCollisionAlgorithm, driven directly (findAlgorithm with
 // BT_CONTACT_POINT_ALGORITHMS + processCollision: GImpact registers only contact-point
 // algorithms, so contactPairTest would silently report nothing). "Collides" = the contact
@@ -19,7 +19,7 @@ class GimpactPeer : public Method {
   ~GimpactPeer() override;
 
   const std::string& name() const override { return m_name; }
-  void prepare(const Model& model) override;
+  void prepare(const Model& a, const Model& b) override;
   Answer query(const Pose& a, const Pose& b) override;
 
  private:

@@ -1,6 +1,7 @@
 // The one interface every measured method sits behind (ADB modes, exact mode, GImpact, FCL,
-// the box-only baselines): prepare its data structures for a model once, then answer posed
-// queries of the model against itself.
+// the box-only baselines): prepare its data structures for a pair of models once, then answer
+// posed queries of the first against the second (a model against itself, in Zachmann's
+// benchmark, when both are the same object).
 #pragma once
 
 #include <cstddef>
@@ -14,8 +15,9 @@
 
 namespace adb::tradeoff {
 
-/// A model under study: its label (model name or file stem), its position on the command
-/// line (a unique key) and the mesh.
+/// A model under study: its label (model name or file stem), a key unique within the run
+/// (2 x its case's position on the command line, + 1 for a case's second model; trees are
+/// cached by it) and the mesh.
 struct Model {
   std::string label;
   std::size_t index = 0;
@@ -49,9 +51,11 @@ class Method {
   /// "fcl".
   virtual const std::string& name() const = 0;
   virtual MethodParams params() const { return {}; }
-  /// Builds what the method needs for `model` (untimed). Called once per model.
-  virtual void prepare(const Model& model) = 0;
-  /// Tests the prepared model at pose `a` against itself at pose `b`.
+  /// Builds what the method needs for model `a` and model `b` (untimed), called once per
+  /// case. `b` is `a` itself (the same object) for two copies of one model: then the method
+  /// builds one structure and queries it against itself.
+  virtual void prepare(const Model& a, const Model& b) = 0;
+  /// Tests the prepared model a at pose `a` against the prepared model b at pose `b`.
   virtual Answer query(const Pose& a, const Pose& b) = 0;
 };
 

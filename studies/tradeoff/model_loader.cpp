@@ -10,6 +10,9 @@ Model loadModel(const ModelSource& source, std::size_t index, std::vector<std::s
   if (source.kind == ModelSource::Kind::Generated) {
     return Model{source.name, index, adb::gen::makeModel(source.name, source.targetTriangles)};
   }
+  if (source.kind == ModelSource::Kind::Fixed) {
+    return Model{source.name, index, adb::gen::makeFixedModel(source.name)};
+  }
   adb::io::LoadReport report;
   TriangleMesh mesh = adb::io::loadMesh(source.path, &report);
   for (const std::string& w : report.warnings) {

@@ -1,6 +1,7 @@
-// Turning a --mesh or --model argument into a Model: a file through adb::io (any format
-// assimp reads), a name through adb::gen::makeModel. Throws adb::io::MeshFileError or
-// adb::MeshError (the message names the file and the problem).
+// Turning a --mesh or --model argument (or --against-mesh, --against-model) into a Model: a
+// file through adb::io (any format assimp reads), a name through adb::gen::makeModel or
+// adb::gen::makeFixedModel. Throws adb::io::MeshFileError or adb::MeshError (the message names
+// the file and the problem).
 #pragma once
 
 #include <string>
@@ -11,7 +12,8 @@
 
 namespace adb::tradeoff {
 
-/// `warnings` receives the loader's warnings (to be printed).
+/// `index`: the model's key (Model::index). `warnings` receives the loader's warnings (to be
+/// printed).
 Model loadModel(const ModelSource& source, std::size_t index, std::vector<std::string>& warnings);
 
 }  // namespace adb::tradeoff

@@ -167,16 +167,34 @@ void checkBudgetedMethods(const Options& o) {
   }
 }
 
+// The names --model and --against-model accept: the benchmark's models, then the real-mesh
+// ones (adb/support/mesh_generators.h).
+std::vector<std::string> knownModels() {
+  std::vector<std::string> names = adb::gen::modelNames();
+  for (const std::string& n : adb::gen::realMeshModelNames()) names.push_back(n);
+  return names;
+}
+
+bool isFixedModel(const std::string& name) {
+  const std::vector<std::string> fixed = adb::gen::fixedModelNames();
+  return std::find(fixed.begin(), fixed.end(), name) != fixed.end();
+}
+
 ModelSource parseModel(const std::string& flag, const std::string& text) {
   ModelSource s;
   s.kind = ModelSource::Kind::Generated;
   const std::size_t colon = text.find(':');
   s.name = text.substr(0, colon);
-  const std::vector<std::string> names = adb::gen::modelNames();
+  const std::vector<std::string> names = knownModels();
   if (std::find(names.begin(), names.end(), s.name) == names.end()) {
-    std::string known;
-    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-    failValue(flag, text, "unknown model '" + s.name + "'; known models: " + known);
+    failValue(flag, text, "unknown model '" + s.name + "'; known models: " + joined(names));
+  }
+  if (isFixedModel(s.name)) {
+    if (colon != std::string::npos) {
+      failValue(flag, text, "'" + s.name + "' has one fixed resolution: give it without :N");
+    }
+    s.kind = ModelSource::Kind::Fixed;
+    return s;
   }
   s.targetTriangles = kDefaultModelTriangles;
   if (colon != std::string::npos) {
@@ -188,6 +206,33 @@ ModelSource parseModel(const std::string& flag, const std::string& text) {
     s.targetTriangles = static_cast<std::size_t>(n);
   }
   return s;
+}
+
+ModelSource parseMeshFile(const std::string& flag, const std::string& value) {
+  if (value.empty()) failValue(flag, value, "empty file name");
+  ModelSource s;
+  s.kind = ModelSource::Kind::File;
+  s.path = value;
+  return s;
+}
+
+// --against-mesh and --against-model: the second body of the case the --mesh or --model just
+// before them began.
+void pairWithLast(Options& o, const std::string& flag, const std::string& value,
+                  const ModelSource& b) {
+  if (o.cases.empty()) {
+    failValue(flag, value,
+              "no --mesh or --model before it: it names the model that the one given just "
+              "before it is tested against");
+  }
+  StudyCase& last = o.cases.back();
+  if (last.b) {
+    failValue(flag, value,
+              "'" + sourceLabel(last.a) + "' is already tested against '" +
+                  sourceLabel(*last.b) + "': one --against-mesh or --against-model per "
+                  "--mesh or --model");
+  }
+  last.b = b;
 }
 
 std::string joinArgs(int argc, const char* const* argv) {
@@ -208,31 +253,68 @@ std::string listText(const std::vector<T>& items) {
   return out;
 }
 
-// What to measure: the models, and the poses of Zachmann's benchmark.
+// What to measure: the models (or pairs of models), and the poses.
 void addModelFlags(CLI::App& app, Options& o) {
   tools::addValueOption(app, "--mesh", "FILE",
                        "a mesh file (any format assimp reads); repeatable",
                        [&o](const std::string& value) {
-                         if (value.empty()) failValue("--mesh", value, "empty file name");
-                         ModelSource s;
-                         s.kind = ModelSource::Kind::File;
-                         s.path = value;
-                         o.sources.push_back(s);
+                         o.cases.push_back(StudyCase{parseMeshFile("--mesh", value), {}});
                        });
   tools::addValueOption(app, "--model", "NAME[:N]",
-                       "a generated model (" + joined(adb::gen::modelNames()) +
-                           "),\nabout N triangles (1000..1000000, default 20000); "
-                           "repeatable.\nModels run in command-line order; at least one "
+                       "a generated model: " + joined(adb::gen::modelNames()) +
+                           " (the benchmark's shapes) or slivers (long thin\n"
+                           "triangles), about N triangles (1000..1000000, default 20000);\n"
+                           "or, with one fixed resolution and no :N, " +
+                           joined(adb::gen::fixedModelNames()) +
+                           ". Repeatable.\nModels run in command-line order; at least one "
                            "--mesh or --model.",
                        [&o](const std::string& value) {
-                         o.sources.push_back(parseModel("--model", value));
+                         o.cases.push_back(StudyCase{parseModel("--model", value), {}});
+                       });
+  tools::addValueOption(app, "--against-mesh", "FILE",
+                       "the second body of every query of the --mesh or --model just\n"
+                       "before it: that model (A) is tested against this mesh file (B)\n"
+                       "instead of a second copy of itself",
+                       [&o](const std::string& value) {
+                         pairWithLast(o, "--against-mesh", value,
+                                      parseMeshFile("--against-mesh", value));
+                       });
+  tools::addValueOption(app, "--against-model", "NAME[:N]",
+                       "the same with a generated model as B (names as --model).\n"
+                       "A pair's rows are labelled 'A+B', their triangle count is A's\n"
+                       "plus B's, and its distances are in the pair's unit: the mean of\n"
+                       "the two models' units",
+                       [&o](const std::string& value) {
+                         pairWithLast(o, "--against-model", value,
+                                      parseModel("--against-model", value));
                        });
   tools::addValueOption(
+      app, "--poses", "distances|inside",
+      "'distances': Zachmann's benchmark (both bodies rotated, box centres\n"
+      "each of --distances apart along x); 'inside': FCL's robot in a room\n"
+      "(A at the identity, B randomly rotated with its box centre uniformly\n"
+      "random in A's bounding box; --rotations poses in all; the distance\n"
+      "column holds the centres' distance, rounded to 0.1 unit)",
+      [&o](const std::string& value) {
+        if (value == "distances") {
+          o.poses = PoseMode::Distances;
+        } else if (value == "inside") {
+          o.poses = PoseMode::Inside;
+        } else {
+          failValue("--poses", value, "expected distances or inside");
+        }
+      },
+      "distances");
+  tools::addValueOption(
       app, "--distances", "LIST", "numbers or ranges start:end:step, comma-separated",
-      [&o](const std::string& value) { o.distances = parseDistances("--distances", value); },
+      [&o](const std::string& value) {
+        o.distances = parseDistances("--distances", value);
+        o.distancesGiven = true;
+      },
       kDefaultDistances);
   tools::addIntegerOption(app, "--rotations", o.rotations, 1, 10000000,
-                         "random orientation pairs per distance");
+                         "random orientation pairs per distance (--poses inside: poses\n"
+                         "in all)");
   tools::addValueOption(
       app, "--seed", "N", "seed of the random orientations",
       [&o](const std::string& value) {
@@ -330,10 +412,14 @@ const char* const kAbout =
     "adb-tradeoff: accuracy vs time of ADB-tree queries against exact peers, on Zachmann's\n"
     "benchmark: two copies of each model, bounding-box centres DISTANCE apart (unit: half the\n"
     "largest edge of the model's bounding box), --rotations seeded random orientations of both\n"
-    "copies per distance; every method answers the same poses.";
+    "copies per distance; every method answers the same poses. A model given\n"
+    "--against-mesh/--against-model B is tested against B instead of a copy of itself\n"
+    "(unit: the mean of the two models' units); --poses inside places B anywhere in the\n"
+    "model's bounding box instead.";
 
 const char* const kPolicy =
-    "Timing: every method's data structures are built once per model, untimed. Each query\n"
+    "Timing: every method's data structures are built once per model (both models of a\n"
+    "pair), untimed. Each query\n"
     "runs once untimed (warm caches, as for a pair queried frame after frame; not with\n"
     "--no-warmup), then --repeats\n"
     "times, each timed with std::chrono::steady_clock around the call; the fastest run is\n"
@@ -376,8 +462,13 @@ Options parseOptions(int argc, const char* const* argv) {
     o.help = true;
     return o;
   }
-  if (o.sources.empty()) {
+  if (o.cases.empty()) {
     throw UsageError("nothing to measure: give at least one --mesh FILE or --model NAME");
+  }
+  if (o.poses == PoseMode::Inside && o.distancesGiven) {
+    throw UsageError(
+        "--distances: not used with --poses inside, which places B's centre anywhere in A's "
+        "bounding box (give --rotations for the number of poses)");
   }
   checkBudgetedMethods(o);
   return o;
@@ -389,6 +480,10 @@ std::string fileStem(const std::string& path) {
   const std::size_t dot = base.find_last_of('.');
   if (dot != std::string::npos && dot > 0) base = base.substr(0, dot);
   return base.empty() ? path : base;
+}
+
+std::string sourceLabel(const ModelSource& source) {
+  return source.kind == ModelSource::Kind::File ? fileStem(source.path) : source.name;
 }
 
 std::string usageText() {

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,19 +18,44 @@ namespace adb::tradeoff {
 /// A usage error: a bad flag or value. main() prints it and exits 2.
 using UsageError = tools::UsageError;
 
-/// One model to study, in command-line order: a mesh file or a generated model.
+/// One model: a mesh file or a generated model.
 struct ModelSource {
-  enum class Kind { File, Generated };
+  enum class Kind {
+    File,       ///< a mesh file (--mesh, --against-mesh)
+    Generated,  ///< adb::gen::makeModel(name, targetTriangles)
+    Fixed,      ///< adb::gen::makeFixedModel(name): one resolution, no target
+  };
   Kind kind = Kind::Generated;
   std::string path;                ///< File: the mesh file
-  std::string name;                ///< Generated: the adb::gen::makeModel name
+  std::string name;                ///< Generated, Fixed: the model's name
   std::size_t targetTriangles = 0; ///< Generated: the requested triangle count
 };
 
+/// One case of the study, in command-line order: every query tests model `a` against model
+/// `b` (--against-mesh, --against-model after a's --mesh or --model), or against a second
+/// copy of `a` when `b` is empty (Zachmann's benchmark).
+struct StudyCase {
+  ModelSource a;
+  std::optional<ModelSource> b;
+};
+
+/// Where the second body goes (--poses).
+enum class PoseMode {
+  /// Zachmann's benchmark: both bodies randomly rotated about their box centres, the centres
+  /// each of --distances apart (in the pair's benchmark unit) along x.
+  Distances,
+  /// FCL's "robot in a room": a at the identity, b randomly rotated with its box centre
+  /// uniformly random in a's bounding box.
+  Inside,
+};
+
 struct Options {
-  std::vector<ModelSource> sources;
+  std::vector<StudyCase> cases;
+  PoseMode poses = PoseMode::Distances;
   std::vector<double> distances;   ///< benchmark units (adb::benchmarkUnit), ascending
-  int rotations = 200;             ///< random orientation pairs per distance
+  bool distancesGiven = false;     ///< --distances was on the command line
+  /// Random orientation pairs per distance; with --poses inside, the poses in all.
+  int rotations = 200;
   std::uint64_t seed = 1;
   std::vector<std::string> methods{"adb", "exact", "gimpact", "fcl"};
   std::vector<double> pMins{0.5, 0.9, 0.99};
@@ -48,7 +74,7 @@ struct Options {
   std::string commandLine;         ///< as given, for the summary
 };
 
-/// The generated-model triangle counts --model accepts.
+/// The generated-model triangle counts --model and --against-model accept.
 inline constexpr std::size_t kMinModelTriangles = 1000;
 inline constexpr std::size_t kMaxModelTriangles = 1000000;
 inline constexpr std::size_t kDefaultModelTriangles = 20000;
@@ -63,5 +89,8 @@ std::string usageText();
 
 /// Short file name without directory and extension ("meshes/bunny.ply" -> "bunny").
 std::string fileStem(const std::string& path);
+
+/// What a model is called in the output files: the file's stem or the model's name.
+std::string sourceLabel(const ModelSource& source);
 
 }  // namespace adb::tradeoff

@@ -21,9 +21,17 @@ RunNotes notes(const Options& o, const std::vector<ModelResult>& done) {
   RunNotes n;
   n.lines.push_back("Command: `" + o.commandLine + "`  ");
   n.lines.push_back("Machine: " + machineNote() + "  ");
-  n.lines.push_back("Poses: " + std::to_string(o.distances.size()) + " distances x " +
-                    std::to_string(o.rotations) + " rotations per model, seed " +
-                    std::to_string(o.seed) + "; the same poses for every method.  ");
+  if (o.poses == PoseMode::Inside) {
+    n.lines.push_back("Poses: " + std::to_string(o.rotations) +
+                      " per case, inside (A at the identity, B randomly rotated with its box "
+                      "centre uniformly random in A's bounding box), seed " +
+                      std::to_string(o.seed) + "; the same poses for every method.  ");
+  } else {
+    n.lines.push_back("Poses: " + std::to_string(o.distances.size()) + " distances x " +
+                      std::to_string(o.rotations) + " rotations per case, seed " +
+                      std::to_string(o.seed) + "; the same poses for every method.  ");
+  }
+  for (const ModelResult& r : done) n.lines.push_back(r.note + "  ");
   n.lines.push_back(std::string("Timing: per query, ") +
                     (o.warmup ? "one untimed warm-up run, then " : "no warm-up run, ") +
                     "the fastest of " +

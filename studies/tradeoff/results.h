@@ -26,9 +26,12 @@ struct MethodRecords {
   std::vector<QueryRecord> queries;  ///< indexed like ModelResult::distance
 };
 
+/// One case's results: a model against a copy of itself, or a pair ("A+B", triangles A's
+/// plus B's).
 struct ModelResult {
   std::string label;
   std::size_t triangles = 0;
+  std::string note;  ///< the models, their triangles and aspects, the unit (summary.md)
   std::vector<double> distance;     ///< per pose
   std::vector<bool> rootsOverlap;   ///< per pose
   std::vector<MethodRecords> methods;

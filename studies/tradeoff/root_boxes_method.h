@@ -13,12 +13,15 @@ namespace adb::tradeoff {
 class RootBoxesMethod : public Method {
  public:
   const std::string& name() const override { return m_name; }
-  void prepare(const Model& model) override { m_bounds = model.mesh.bounds(); }
+  void prepare(const Model& a, const Model& b) override {
+    m_boundsA = a.mesh.bounds();
+    m_boundsB = b.mesh.bounds();
+  }
   Answer query(const Pose& a, const Pose& b) override;
 
  private:
   std::string m_name = "root-boxes";
-  Aabb m_bounds;
+  Aabb m_boundsA, m_boundsB;
 };
 
 }  // namespace adb::tradeoff

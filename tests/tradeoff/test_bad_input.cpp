@@ -52,6 +52,28 @@ TEST(BadInput, UnknownModelAndMissingModelsAreUsageErrors) {
   expectUsageError({"--model", "knot:1000", "--frobnicate"}, {"--frobnicate"});
 }
 
+TEST(BadInput, PairsAndPosesMisusedAreUsageErrorsNamingTheOption) {
+  expectUsageError({"--against-model", "robot"}, {"--against-model", "robot", "--mesh", "--model"});
+  expectUsageError({"--against-mesh", "arm.stl", "--model", "room"},
+                   {"--against-mesh", "arm.stl", "no --mesh or --model before it"});
+  expectUsageError({"--model", "room", "--against-model", "chair"},
+                   {"--against-model", "chair", "unknown model", "robot"});
+  expectUsageError({"--model", "room", "--against-model", "robot", "--against-model", "knot"},
+                   {"--against-model", "knot", "already tested against"});
+  expectUsageError({"--model", "room:5000"}, {"--model", "room:5000", "fixed resolution"});
+  expectUsageError({"--model", "knot:1000", "--poses", "around"}, {"--poses", "around"});
+  expectUsageError({"--model", "knot:1000", "--poses", "inside", "--distances", "0.5"},
+                   {"--distances", "--poses inside"});
+}
+
+TEST(BadInput, MissingAgainstMeshIsAnInputErrorNamingTheFile) {
+  const std::string dir = freshDir("missing_against");
+  const RunResult r = runTool({"--model", "knot:1000", "--against-mesh", dir + "/no_such_b.stl",
+                               "--no-plots", "--out", dir});
+  EXPECT_EQ(r.exitCode, 1) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("no_such_b.stl"), std::string::npos) << r.stderrText;
+}
+
 TEST(BadInput, MissingMeshFileIsAnInputErrorNamingTheFile) {
   const std::string dir = freshDir("missing");
   const RunResult r = runTool({"--mesh", dir + "/no_such_mesh.obj", "--no-plots", "--out", dir});

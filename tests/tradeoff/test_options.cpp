@@ -27,9 +27,11 @@ std::string errorOf(std::vector<const char*> args) {
 
 TEST(Options, DefaultsFollowTheIssue) {
   const Options o = parse({"--model", "knot"});
-  ASSERT_EQ(o.sources.size(), 1u);
-  EXPECT_EQ(o.sources[0].name, "knot");
-  EXPECT_EQ(o.sources[0].targetTriangles, 20000u);
+  ASSERT_EQ(o.cases.size(), 1u);
+  EXPECT_EQ(o.cases[0].a.name, "knot");
+  EXPECT_EQ(o.cases[0].a.targetTriangles, 20000u);
+  EXPECT_FALSE(o.cases[0].b);  // a second copy of the model
+  EXPECT_EQ(o.poses, PoseMode::Distances);
   ASSERT_EQ(o.distances.size(), 17u);  // 0.4, 0.5, ..., 2.0
   EXPECT_EQ(o.distances.front(), 0.4);
   EXPECT_EQ(o.distances[3], 0.7);  // no 0.70000000000000007 from 0.4 + 3 * 0.1
@@ -53,13 +55,89 @@ TEST(Options, ExactCountingIsASwitch) {
 
 TEST(Options, SourcesKeepCommandLineOrder) {
   const Options o = parse({"--model", "torus:1000", "--mesh", "a/b.obj", "--model", "gears:5000"});
-  ASSERT_EQ(o.sources.size(), 3u);
-  EXPECT_EQ(o.sources[0].name, "torus");
-  EXPECT_EQ(o.sources[0].targetTriangles, 1000u);
-  EXPECT_EQ(o.sources[1].kind, ModelSource::Kind::File);
-  EXPECT_EQ(o.sources[1].path, "a/b.obj");
-  EXPECT_EQ(o.sources[2].targetTriangles, 5000u);
+  ASSERT_EQ(o.cases.size(), 3u);
+  EXPECT_EQ(o.cases[0].a.name, "torus");
+  EXPECT_EQ(o.cases[0].a.targetTriangles, 1000u);
+  EXPECT_EQ(o.cases[1].a.kind, ModelSource::Kind::File);
+  EXPECT_EQ(o.cases[1].a.path, "a/b.obj");
+  EXPECT_EQ(o.cases[2].a.targetTriangles, 5000u);
   EXPECT_EQ(fileStem("a/b.obj"), "b");
+}
+
+// --against-mesh and --against-model give the second body of the case begun just before them.
+TEST(Options, AgainstPairsWithTheModelJustBeforeIt) {
+  const Options o = parse({"--model", "room", "--against-model", "robot", "--mesh", "a/arm.stl",
+                           "--against-mesh", "b/shaft.stl", "--model", "knot:2000",
+                           "--mesh", "c.obj", "--against-model", "slivers:5000"});
+  ASSERT_EQ(o.cases.size(), 4u);
+  EXPECT_EQ(o.cases[0].a.kind, ModelSource::Kind::Fixed);
+  EXPECT_EQ(o.cases[0].a.name, "room");
+  ASSERT_TRUE(o.cases[0].b);
+  EXPECT_EQ(o.cases[0].b->kind, ModelSource::Kind::Fixed);
+  EXPECT_EQ(o.cases[0].b->name, "robot");
+  EXPECT_EQ(o.cases[1].a.path, "a/arm.stl");
+  ASSERT_TRUE(o.cases[1].b);
+  EXPECT_EQ(o.cases[1].b->kind, ModelSource::Kind::File);
+  EXPECT_EQ(o.cases[1].b->path, "b/shaft.stl");
+  EXPECT_FALSE(o.cases[2].b);
+  ASSERT_TRUE(o.cases[3].b);
+  EXPECT_EQ(o.cases[3].b->kind, ModelSource::Kind::Generated);
+  EXPECT_EQ(o.cases[3].b->name, "slivers");
+  EXPECT_EQ(o.cases[3].b->targetTriangles, 5000u);
+  EXPECT_EQ(sourceLabel(o.cases[1].b.value()), "shaft");
+}
+
+TEST(Options, AgainstNeedsAModelBeforeItAndOnlyOne) {
+  for (const char* flag : {"--against-model", "--against-mesh"}) {
+    const std::string alone = errorOf({flag, "robot", "--model", "room"});
+    EXPECT_EQ(alone.rfind(std::string(flag) + " 'robot'", 0), 0u) << alone;
+    EXPECT_NE(alone.find("no --mesh or --model before it"), std::string::npos) << alone;
+  }
+  const std::string twice =
+      errorOf({"--model", "room", "--against-model", "robot", "--against-mesh", "x.stl"});
+  EXPECT_EQ(twice.rfind("--against-mesh 'x.stl'", 0), 0u) << twice;
+  EXPECT_NE(twice.find("already tested against 'robot'"), std::string::npos) << twice;
+  const std::string unknown = errorOf({"--model", "room", "--against-model", "chair"});
+  EXPECT_EQ(unknown.rfind("--against-model 'chair': unknown model", 0), 0u) << unknown;
+  EXPECT_NE(unknown.find("robot"), std::string::npos) << unknown;  // the names are listed
+  EXPECT_EQ(errorOf({"--model", "room", "--against-mesh", ""}).rfind("--against-mesh", 0), 0u);
+}
+
+// The real-mesh models: slivers follows a target like the benchmark's; room and robot have
+// one resolution, and a count after them is refused rather than ignored.
+TEST(Options, RealMeshModelsAndTheirTriangleCounts) {
+  const Options o = parse({"--model", "slivers:3000", "--model", "robot"});
+  EXPECT_EQ(o.cases[0].a.kind, ModelSource::Kind::Generated);
+  EXPECT_EQ(o.cases[0].a.targetTriangles, 3000u);
+  EXPECT_EQ(o.cases[1].a.kind, ModelSource::Kind::Fixed);
+  EXPECT_EQ(parse({"--model", "slivers"}).cases[0].a.targetTriangles, 20000u);
+  const std::string counted = errorOf({"--model", "room:2000"});
+  EXPECT_EQ(counted.rfind("--model 'room:2000'", 0), 0u) << counted;
+  EXPECT_NE(counted.find("fixed resolution"), std::string::npos) << counted;
+  EXPECT_EQ(errorOf({"--model", "knot", "--against-model", "robot:500"})
+                .rfind("--against-model 'robot:500'", 0),
+            0u);
+  EXPECT_NE(errorOf({"--model", "slivers:10"}).find("between 1000 and 1000000"),
+            std::string::npos);
+}
+
+TEST(Options, PosesInsideTakesNoDistances) {
+  const Options o = parse({"--model", "room", "--against-model", "robot", "--poses", "inside",
+                           "--rotations", "50"});
+  EXPECT_EQ(o.poses, PoseMode::Inside);
+  EXPECT_EQ(o.rotations, 50);
+  EXPECT_EQ(parse({"--model", "knot", "--poses", "distances"}).poses, PoseMode::Distances);
+  const std::string bad = errorOf({"--model", "knot", "--poses", "outside"});
+  EXPECT_EQ(bad.rfind("--poses 'outside'", 0), 0u) << bad;
+  // Either order: --distances means nothing to inside poses.
+  for (const auto& args : {std::vector<const char*>{"--model", "knot", "--poses", "inside",
+                                                    "--distances", "0.5"},
+                           std::vector<const char*>{"--model", "knot", "--distances", "0.5",
+                                                    "--poses", "inside"}}) {
+    const std::string e = errorOf(args);
+    EXPECT_EQ(e.rfind("--distances", 0), 0u) << e;
+    EXPECT_NE(e.find("--poses inside"), std::string::npos) << e;
+  }
 }
 
 TEST(Options, DistancesMixNumbersAndRanges) {
@@ -129,7 +207,8 @@ TEST(Options, NewMethodsAreOptInAndBudgetedOnesNeedAFiniteBudget) {
 TEST(Options, HelpNamesTheNewMethodsAndFlag) {
   const std::string help = usageText();
   for (const char* word : {"--budget-pairs", "adb-work:N", "exact-cut", "box-first",
-                           "root-boxes", "reliability.csv", "ece"}) {
+                           "root-boxes", "reliability.csv", "ece", "slivers", "room", "robot",
+                           "A+B", "the mean of", "inside"}) {
     EXPECT_NE(help.find(word), std::string::npos) << word;
   }
 }
@@ -138,12 +217,14 @@ TEST(Options, HelpNamesTheNewMethodsAndFlag) {
 // the parser really uses.
 TEST(Options, HelpListsEveryFlagWithItsDefault) {
   const std::string help = usageText();
-  for (const char* flag : {"--mesh", "--model", "--distances", "--rotations", "--seed",
+  for (const char* flag : {"--mesh", "--model", "--against-mesh", "--against-model", "--poses",
+                           "--distances", "--rotations", "--seed",
                            "--methods", "--p-min", "--k-min", "--budget-us", "--budget-pairs",
                            "--exact-counting", "--repeats", "--out", "--no-plots", "--help"}) {
     EXPECT_NE(help.find(flag), std::string::npos) << flag;
   }
   for (const char* value : {"0.4:2.0:0.1", "=200", "adb,exact,gimpact,fcl", "0.5,0.9,0.99",
+                            "=distances",
                             "1,5,10", "none,5,20,100", "=3", "tradeoff-results"}) {
     EXPECT_NE(help.find(value), std::string::npos) << value;
   }

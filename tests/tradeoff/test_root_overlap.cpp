@@ -1,5 +1,6 @@
 // rootBoxesOverlap (the error-rate filter) against FCL's box-box test as an independent
-// oracle, on random poses around the touching distance, plus hand-made cases.
+// oracle, on random poses around the touching distance, for one box twice and for two
+// different boxes, plus hand-made cases.
 #include <gtest/gtest.h>
 
 #include <fcl/geometry/shape/box.h>
@@ -50,6 +51,38 @@ TEST(RootOverlap, AgreesWithFclBoxBoxOnRandomPoses) {
     fcl::collide(box.get(), ta, box.get(), tb, fcl::CollisionRequestd(1, false), result);
     const bool ours = rootBoxesOverlap(kBox, p.a, p.b);
     EXPECT_EQ(ours, result.isCollision()) << "pose " << i;
+    overlaps += ours ? 1 : 0;
+  }
+  EXPECT_GT(overlaps, n / 10);
+  EXPECT_LT(overlaps, n - n / 10);
+}
+
+// Two different boxes (a pair of models): the room-sized box and a small one anywhere in and
+// around it, and both at Zachmann's distances in the pair's unit.
+TEST(RootOverlap, TwoDifferentBoxesAgreeWithFclBoxBox) {
+  const Aabb small{Vec3(-0.2, 0.1, -0.05), Vec3(0.3, 0.25, 0.4)};
+  const Vec3 sizeA = kBox.extent(), sizeB = small.extent();
+  const auto boxA = std::make_shared<fcl::Boxd>(sizeA.x(), sizeA.y(), sizeA.z());
+  const auto boxB = std::make_shared<fcl::Boxd>(sizeB.x(), sizeB.y(), sizeB.z());
+  // The inside poses' box grown by half the room on every side: B's centre in and around A.
+  const Aabb around{kBox.lo - 0.5 * sizeA, kBox.hi + 0.5 * sizeA};
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> distance(0.2, 2.0);
+  int overlaps = 0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const PosePair p = i % 2 == 0 ? insidePoses(around, small, rng)
+                                  : benchmarkPoses(kBox, small, distance(rng), rng);
+    fcl::Transform3d ta = fcl::Transform3d::Identity(), tb = fcl::Transform3d::Identity();
+    ta.linear() = p.a.rotation;
+    ta.translation() = p.a.rotation * kBox.center() + p.a.translation;
+    tb.linear() = p.b.rotation;
+    tb.translation() = p.b.rotation * small.center() + p.b.translation;
+    fcl::CollisionResultd result;
+    fcl::collide(boxA.get(), ta, boxB.get(), tb, fcl::CollisionRequestd(1, false), result);
+    const bool ours = rootBoxesOverlap(kBox, p.a, small, p.b);
+    EXPECT_EQ(ours, result.isCollision()) << "pose " << i;
+    EXPECT_EQ(ours, rootBoxesOverlap(small, p.b, kBox, p.a)) << "pose " << i << ": symmetric";
     overlaps += ours ? 1 : 0;
   }
   EXPECT_GT(overlaps, n / 10);
