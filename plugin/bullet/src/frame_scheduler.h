@@ -109,6 +109,8 @@ class FrameScheduler {
   /// Whether a pair runs whatever the budget: it has speculative contacts, or had them
   /// within the last ManifoldAlgorithm::kLandingSteps steps (its body is landing).
   static bool sweeps(const DeferredPair& pair);
+  /// Whether a whole pair's body is arriving: nothing to keep, moved, near last time.
+  static bool arriving(const DeferredPair& pair);
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
