@@ -42,11 +42,13 @@ void checkStructure(const TriangleMesh& mesh, const AdbTree& tree) {
   }
   for (std::size_t t = 0; t < seen.size(); ++t) ASSERT_EQ(seen[t], 1) << "triangle " << t;
   EXPECT_EQ(tree.maxDepth(), maxDepth);
-  // Median splits: the depth of a balanced tree over ceil(n / leaf) leaves, plus one for the
-  // halves that round up.
+  // SAH splits leave each child at least a tenth of the triangles, and only down to twice a
+  // balanced tree's depth (2 L + 2, L = ceil(log2(leaves))); median splits below that take
+  // at most L + 1 more levels.
   const double leaves = std::ceil(static_cast<double>(mesh.triangleCount()) /
                                   tree.settings().maxLeafTriangles);
-  EXPECT_LE(maxDepth, static_cast<int>(std::ceil(std::log2(std::max(1.0, leaves)))) + 1);
+  const int balanced = static_cast<int>(std::ceil(std::log2(std::max(1.0, leaves))));
+  EXPECT_LE(maxDepth, 3 * balanced + 3);
 }
 
 TEST(TreeStructure, EveryTriangleInExactlyOneLeafAndBoxesNest) {

@@ -186,7 +186,7 @@ struct Traversal::Impl {
   // for the evidence of a stop. `heap` then mirrors it only when openPairs() asks.
   struct QueueEntry {
     std::uint32_t a, b, region;
-    std::uint8_t depthA, depthB;  // trees are balanced: at most 28 levels (tree_builder.cpp)
+    std::uint8_t depthA, depthB;  // deeper trees (kMaxQueueDepth) are ordered by Eq. 3
     std::uint16_t expected;       // E[X] as a float's 16 bits after the sign (encodeExpected)
   };
   static_assert(sizeof(QueueEntry) == 16, "a queue entry is 16 bytes");

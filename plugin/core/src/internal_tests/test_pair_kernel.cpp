@@ -112,7 +112,7 @@ TEST(PairKernel, MatchesThePairAtATimeTestOnAMillionRandomPairs) {
     Mat3 rel = Mat3::Identity();
     if (rng() % 4 != 0) rel = randomRotation(rng).toRotationMatrix();
     const double reach = (halfOf(ta, a) + halfOf(tb, b)).norm();
-    const Vec3 target = centreOf(ta, a) + 0.8 * reach * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 target = centreOf(ta, a) + 0.7 * reach * Vec3(u(rng), u(rng), u(rng));
     Pose poseB;
     poseB.rotation = poseA.rotation * rel;
     poseB.translation = poseA.translation + poseA.rotation * (target + ta.origin()) -

@@ -327,53 +327,55 @@ TEST(PairProbability, MatchesMonteCarloOfTheCellModel) {
       {&torusTree(), &torusTree(), 7, 7, true},
   };
   int compared = 0, upperInside = 0, lowerInside = 0;
-  for (const Combo& c : combos) {
-    for (Placement placement :
-         {Placement::BarelyTouching, Placement::HalfOverlapping, Placement::Centred}) {
-      // A node with possible collision cells at each requested depth.
-      const auto pick = [&rng](const DepthTree& t, int d) {
-        std::vector<std::uint32_t> candidates;
-        for (std::uint32_t i : t.byDepth.at(d)) {
-          if (t.tree.distributions()[i].density > 0.0f) candidates.push_back(i);
-        }
-        return candidates.at(std::uniform_int_distribution<std::size_t>(
-            0, candidates.size() - 1)(rng));
-      };
-      const std::uint32_t ia = pick(*c.a, c.depthA), ib = pick(*c.b, c.depthB);
-      const Mat3 rel = c.rotate ? randomRotation(rng).toRotationMatrix() : Mat3::Identity();
-      const Pose poseA = randomPose(rng);
-      const Pose poseB = placeB(*c.a, poseA, *c.b, c.b->centre(ib), rel,
-                                targetFor(*c.a, ia, *c.b, ib, rel, placement));
-      const detail::PairEstimate e = estimate(*c.a, ia, poseA, *c.b, ib, poseB);
-      SCOPED_TRACE(testing::Message() << "depths " << c.depthA << "/" << c.depthB << ", "
-                                      << name(placement) << ": s " << e.s << " sA " << e.sA
-                                      << " sB " << e.sB);
-      if (!e.overlap) continue;  // the slab test may separate boxes that touch
-      const CellModel m = cellModel(*c.a, ia, poseA, *c.b, ib, poseB);
-      expectCountsMatchTheModel(e, m);
+  for (int round = 0; round < 2; ++round) {  // two nodes of each kind: two draws per case
+    for (const Combo& c : combos) {
+      for (Placement placement :
+           {Placement::BarelyTouching, Placement::HalfOverlapping, Placement::Centred}) {
+        // A node with possible collision cells at each requested depth.
+        const auto pick = [&rng](const DepthTree& t, int d) {
+          std::vector<std::uint32_t> candidates;
+          for (std::uint32_t i : t.byDepth.at(d)) {
+            if (t.tree.distributions()[i].density > 0.0f) candidates.push_back(i);
+          }
+          return candidates.at(std::uniform_int_distribution<std::size_t>(
+              0, candidates.size() - 1)(rng));
+        };
+        const std::uint32_t ia = pick(*c.a, c.depthA), ib = pick(*c.b, c.depthB);
+        const Mat3 rel = c.rotate ? randomRotation(rng).toRotationMatrix() : Mat3::Identity();
+        const Pose poseA = randomPose(rng);
+        const Pose poseB = placeB(*c.a, poseA, *c.b, c.b->centre(ib), rel,
+                                  targetFor(*c.a, ia, *c.b, ib, rel, placement));
+        const detail::PairEstimate e = estimate(*c.a, ia, poseA, *c.b, ib, poseB);
+        SCOPED_TRACE(testing::Message() << "depths " << c.depthA << "/" << c.depthB << ", "
+                                        << name(placement) << ": s " << e.s << " sA " << e.sA
+                                        << " sB " << e.sB);
+        if (!e.overlap) continue;  // the slab test may separate boxes that touch
+        const CellModel m = cellModel(*c.a, ia, poseA, *c.b, ib, poseB);
+        expectCountsMatchTheModel(e, m);
 
-      // The simulation runs on the model's own counts, not the implementation's.
-      const std::vector<double> tail = simulateTail(m.s, m.sA, m.sB, kTrials, rng);
-      const double upper = m.sA > 0 && m.sB > 0 ? tail[1] : 0.0;
-      const double lower = eq3(tail, m.sA, m.sB, m.lb);
-      double lowerTolerance = 0.0;
-      for (int x = 1; x <= std::min({m.sA, m.sB, kMaxCollisionCells}); ++x) {
-        lowerTolerance = std::max(lowerTolerance, kStandardErrors * standardError(tail[x]) *
-                                                      (1.0 - std::pow(1.0 - m.lb, x)));
+        // The simulation runs on the model's own counts, not the implementation's.
+        const std::vector<double> tail = simulateTail(m.s, m.sA, m.sB, kTrials, rng);
+        const double upper = m.sA > 0 && m.sB > 0 ? tail[1] : 0.0;
+        const double lower = eq3(tail, m.sA, m.sB, m.lb);
+        double lowerTolerance = 0.0;
+        for (int x = 1; x <= std::min({m.sA, m.sB, kMaxCollisionCells}); ++x) {
+          lowerTolerance = std::max(lowerTolerance, kStandardErrors * standardError(tail[x]) *
+                                                        (1.0 - std::pow(1.0 - m.lb, x)));
+        }
+        EXPECT_NEAR(e.upper, upper, kStandardErrors * standardError(upper));
+        EXPECT_NEAR(e.lower, lower, lowerTolerance + 1e-12);
+        ++compared;
+        if (e.upper > 0.02 && e.upper < 0.98) ++upperInside;
+        if (e.lower > 0.02 && e.lower < 0.98) ++lowerInside;
       }
-      EXPECT_NEAR(e.upper, upper, kStandardErrors * standardError(upper));
-      EXPECT_NEAR(e.lower, lower, lowerTolerance + 1e-12);
-      ++compared;
-      if (e.upper > 0.02 && e.upper < 0.98) ++upperInside;
-      if (e.lower > 0.02 && e.lower < 0.98) ++lowerInside;
     }
   }
-  // Most of the 33 cases overlap (a slab may separate barely touching boxes), and enough of
-  // them lie well inside (0, 1) for the comparison to mean something (31, 6 and 25 when
-  // written).
-  EXPECT_GE(compared, 25);
+  // Most of the 66 cases overlap (a slab may separate barely touching boxes), and enough of
+  // them lie well inside (0, 1) for the comparison to mean something (31, 6 and 25 of 33 when
+  // written; 29, 2 and 24 of 33 once the trees were built by SAH, issue 37, hence two draws).
+  EXPECT_GE(compared, 50);
   EXPECT_GE(upperInside, 4);
-  EXPECT_GE(lowerInside, 12);
+  EXPECT_GE(lowerInside, 24);
 }
 
 // ---- Hand-computed cases ----------------------------------------------------------------
