@@ -6,6 +6,14 @@
 
 namespace adb::detail {
 
+const CandidateContact* ContactSelection::closest() const {
+  const CandidateContact* best = nullptr;
+  for (int i = 0; i < m_count; ++i) {
+    if (!best || m_candidates[i].distance < best->distance) best = &m_candidates[i];
+  }
+  return best;
+}
+
 void ContactSelection::add(const CandidateContact& c) {
   // Once full, the candidates form a heap with the shallowest on top: a deeper candidate
   // replaces it in O(log n).

@@ -40,6 +40,8 @@ class ContactSelection {
   /// Empties it for another step (a selection kept by the scheduler is reused).
   void clear() { m_count = 0; }
   int size() const { return m_count; }
+  /// The closest candidate (the deepest), or nullptr when there is none.
+  const CandidateContact* closest() const;
   /// Writes the deepest candidate; then, among those within a quarter of the breaking
   /// threshold of its depth, the ones nearest the points `previous` (the pair's manifold,
   /// before this step's points) holds, within the breaking threshold; then greedily the ones

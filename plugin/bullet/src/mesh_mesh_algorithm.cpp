@@ -201,7 +201,13 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
                                            boxCentre(shape1, transform1));
   m_points.clear();
   m_pointCount = ContactCount{};
-  m_pointCount.exact = detail::addExactContacts(posed, m_traversal.witnesses(), hint, m_points);
+  // A pair at rest keeps its points' normals (addExactContacts); one in motion takes each
+  // pair of triangles' least depth afresh.
+  const detail::ContactGroups resting =
+      barelyMoved(motionSinceLastRun(transform0, transform1)) ? contactGroups()
+                                                               : detail::ContactGroups{};
+  m_pointCount.exact =
+      detail::addExactContacts(posed, m_traversal.witnesses(), hint, resting, m_points);
   if (speculativeReach() > 0) {
     spreadSpeculativeContacts(mesh0, transform0, mesh1, transform1, breakingThreshold(),
                               m_points);

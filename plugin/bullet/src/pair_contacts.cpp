@@ -13,6 +13,7 @@
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 
 #include <algorithm>
+#include <limits>
 #include <array>
 #include <cmath>
 
@@ -281,9 +282,49 @@ void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups) {
   }
 }
 
+namespace {
+
+// Last step's point made by the same two triangles, or nullptr.
+const btManifoldPoint* samePoint(const ContactGroups& last, int featureA, int featureB) {
+  for (int g = 0; g < last.count; ++g) {
+    for (int k = 0; k < last.manifolds[g]->getNumContacts(); ++k) {
+      const btManifoldPoint& p = last.manifolds[g]->getContactPoint(k);
+      if (p.m_index0 == featureA && p.m_index1 == featureB) return &p;
+    }
+  }
+  return nullptr;
+}
+
+// How far triangle b must move along unit n to clear triangle a: max(a.n) - min(b.n).
+double depthAlong(const Vec3 a[3], const Vec3 b[3], const Vec3& n) {
+  return std::max({n.dot(a[0]), n.dot(a[1]), n.dot(a[2])}) -
+         std::min({n.dot(b[0]), n.dot(b[1]), n.dot(b[2])});
+}
+
+// A point of last step keeps its normal while the depth along it stays within a breaking
+// threshold of the least (contact persistence, as Box2D keeps its reference face within a
+// tolerance): the least-depth axis under this step's hint may be another one, nearly as good,
+// and a contact that turns its normal between steps shoves a resting body (a ring through a
+// tube turned one point's normal by 88 degrees on the second step of a frozen pair). The point
+// stays where it was on body 1.
+void keepLastNormal(const PosedPair& pair, const Vec3 a[3], const Vec3 b[3],
+                    const btManifoldPoint& last, btScalar threshold, TriangleContact& c) {
+  const Vec3 n = -fromBt(last.m_normalWorldOnB);  // from A towards B
+  if (!n.allFinite() || c.normal.dot(n) > 1.0 - 1e-9) return;
+  const double depth = depthAlong(a, b, n);
+  if (!(depth >= 0.0 && depth <= c.depth + static_cast<double>(threshold))) return;
+  c.normal = n;
+  c.depth = depth;
+  c.pointOnB = pair.poseB.apply(fromBt(last.m_localPointB));
+}
+
+}  // namespace
+
 std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>& witnesses,
-                               const Vec3& hint, ContactPoints& out) {
+                               const Vec3& hint, const ContactGroups& last, ContactPoints& out) {
   std::uint32_t written = 0;
+  const btScalar threshold =
+      last.count > 0 ? last.manifolds[0]->getContactBreakingThreshold() : btScalar(0);
   for (const Witness& w : witnesses) {
     if (!w.isExact()) continue;
     Vec3 a[3], b[3];
@@ -297,15 +338,20 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
       }
       continue;
     }
-    const TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
+    TriangleContact c = triangleContact(a[0], a[1], a[2], b[0], b[1], b[2], hint);
     if (!c.valid) continue;
+    const int featureA = static_cast<int>(pair.a->meshTriangle(w.triangleA));
+    const int featureB = static_cast<int>(pair.b->meshTriangle(w.triangleB));
+    if (const btManifoldPoint* previous = samePoint(last, featureA, featureB)) {
+      keepLastNormal(pair, a, b, *previous, threshold, c);
+    }
     // B is pushed along +normal: A's surface must face it, B's must face back.
     if (facesAway(a, pair.facingA, -c.normal) || facesAway(b, pair.facingB, c.normal)) continue;
     // Bullet: the normal on B points from body 1 towards body 0, the point lies on body 1,
     // and a negative distance is a penetration.
     PendingContact point{toBt(-c.normal), toBt(c.pointOnB), static_cast<btScalar>(-c.depth)};
-    point.featureA = static_cast<int>(pair.a->meshTriangle(w.triangleA));
-    point.featureB = static_cast<int>(pair.b->meshTriangle(w.triangleB));
+    point.featureA = featureA;
+    point.featureB = featureB;
     out.push_back(point);
     ++written;
   }

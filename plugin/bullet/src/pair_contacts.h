@@ -91,10 +91,13 @@ Vec3 separationHint(const btVector3& lastNormalsOnB, const btVector3& boxCentre0
 /// One contact per intersecting triangle pair among `witnesses` (node-only witnesses are
 /// skipped), except where a triangle of a closed mesh faces away from the contact normal:
 /// such a pair is not two surfaces meeting (coplanar side faces of stacked boxes, the far
-/// wall of a penetrated tube) and pushing along it shoves bodies sideways. Returns the
-/// number of points added to `out`.
+/// wall of a penetrated tube) and pushing along it shoves bodies sideways. A triangle pair
+/// that made one of the points of `resting` (last step's, for a pair at rest; empty
+/// otherwise) keeps that point's normal and place on body 1 while the depth along it stays
+/// within a breaking threshold of the least. Returns the number of points added to `out`.
 std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>& witnesses,
-                               const Vec3& hint, ContactPoints& out);
+                               const Vec3& hint, const ContactGroups& resting,
+                               ContactPoints& out);
 
 /// Plausible contacts from the unresolved node pairs with probability >= settings.pAccept
 /// (the most probable first, at most settings.maxPlausibleContacts), softened by their
