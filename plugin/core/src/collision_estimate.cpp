@@ -24,12 +24,12 @@ double logOf(double x) {
 // under the paper's rules (docs/probability-model.md gives the run, and how the fit does on
 // meshes it never saw). The expected collision cells, the
 // doubt per open pair and the union of the open pairs' keys decide.
-constexpr EstimateWeights kBudgetWeights{-6.69167, 1.68446, 0.931093, 0, -1.74988, 0, 1.93502, 0};
+constexpr EstimateWeights kBudgetWeights{-6.58356, 2.02856, 1.20712, 0, -2.12907, 0, 1.88651, 0};
 // P(the paper's answer is right) at quality stops: a model of collision itself answered worse
 // than the paper's rule there (knot 16.7 % wrong against 9.1 %); this one keeps the rule's
 // answer where it is right at least half the time and calibrates its confidence.
-constexpr EstimateWeights kQualityWeights{-3.92653, -0.707817, -2.5551, -0.813572,
-                                          2.27728,  0.232683,  1.8213,  9.75858};
+constexpr EstimateWeights kQualityWeights{-3.98797, -1.1547,  -2.67133, -1.19912,
+                                          2.59293,  0.426256, 1.90821,  10.5611};
 
 }  // namespace
 

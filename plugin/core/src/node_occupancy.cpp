@@ -117,6 +117,18 @@ std::uint64_t cellsOfChild(const Node& n, const NodeOccupancy& o, const Node& ch
   return cells;
 }
 
+// Whether triangles [first, last) are slivers taken together (kSliverFatness).
+bool isSlivers(const std::vector<Vec3>& verts, const std::vector<Triangle>& tris,
+               std::uint32_t first, std::uint32_t last) {
+  double area = 0.0, longest = 0.0;
+  for (std::uint32_t t = first; t < last; ++t) {
+    const Vec3 &a = verts[tris[t][0]], &b = verts[tris[t][1]], &c = verts[tris[t][2]];
+    area += 0.5 * (b - a).cross(c - a).norm();
+    longest += std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  }
+  return area < kSliverFatness * longest;
+}
+
 }  // namespace
 
 NodeOccupancy occupancyLayout(const Vec3& extent) {
@@ -149,7 +161,8 @@ void computeOccupancy(AdbTree& tree) {
     const Node& n = nodes[i];
     NodeOccupancy o = occupancyLayout(n.boxHi() - n.boxLo());
     o.cells = 0;
-    o.triangles = static_cast<std::uint8_t>(std::min<std::uint32_t>(ranges[i].second - ranges[i].first, 255));
+    o.triangles = std::min<std::uint32_t>(ranges[i].second - ranges[i].first, 127) & 0x7Fu;
+    o.slivers = isSlivers(verts, tris, ranges[i].first, ranges[i].second) ? 1 : 0;
     if (n.isLeaf() || ranges[i].second - ranges[i].first <= kTrianglesTestedDirectly) {
       for (std::uint32_t t = ranges[i].first; t < ranges[i].second && o.cells != ~0ull; ++t) {
         o.cells |= cellsTouched(n, o, verts[tris[t][0]], verts[tris[t][1]], verts[tris[t][2]]);

@@ -1284,11 +1284,14 @@ struct Traversal::Impl {
   }
 
   // Whether a pair may be accepted on probability: not two leaves (their triangles decide),
-  // and each node with enough triangles for the model to hold (minTrianglesToAccept).
+  // and each node with enough triangles, not slivers, for the model to hold
+  // (minTrianglesToAccept, kSliverFatness).
   bool acceptable(std::uint32_t ia, std::uint32_t ib) const {
     if (a.tree->nodes()[ia].isLeaf() && b.tree->nodes()[ib].isLeaf()) return false;
-    const int least = std::min(a.tree->occupancy()[ia].triangles, b.tree->occupancy()[ib].triangles);
-    return least >= settings.minTrianglesToAccept;
+    const NodeOccupancy& oa = a.tree->occupancy()[ia];
+    const NodeOccupancy& ob = b.tree->occupancy()[ib];
+    if (settings.minTrianglesToAccept > 0 && (oa.slivers || ob.slivers)) return false;
+    return std::min<int>(oa.triangles, ob.triangles) >= settings.minTrianglesToAccept;
   }
 
   // A collision pair (p > p_min). Returns true when it is the k_min-th: the query is decided.
@@ -1457,9 +1460,9 @@ void validate(const QuerySettings& s) {
     throw SettingsError("QuerySettings::pMin is " + detail::formatNumber(s.pMin) +
                         "; it must be in [0, 1]");
   }
-  if (s.minTrianglesToAccept < 0 || s.minTrianglesToAccept > 255) {
+  if (s.minTrianglesToAccept < 0 || s.minTrianglesToAccept > 127) {
     throw SettingsError("QuerySettings::minTrianglesToAccept is " +
-                        std::to_string(s.minTrianglesToAccept) + "; it must be in 0..255");
+                        std::to_string(s.minTrianglesToAccept) + "; it must be in 0..127");
   }
   if (s.kMin < 1) {
     throw SettingsError("QuerySettings::kMin is " + std::to_string(s.kMin) +

@@ -81,11 +81,12 @@ struct QuerySettings {
   /// Report "collision" once kMin collision pairs were found (paper: 1, 5, 10).
   int kMin = 10;
   /// A node pair is a collision pair only when each of its nodes holds at least this many
-  /// triangles (0..255; 0 or 1: the paper, every inner pair). The probability model reads a
-  /// node's surface as many small polygons spread over its cells; a few large or long thin
-  /// triangles are not that, and pairs of them were accepted where the triangles pass each
-  /// other (issue 37: two copies of a 384-triangle pipe bundle answered 5.5 % of the poses
-  /// "collision" wrongly, most with confidence >= 0.9; 0 at 64). Below it the traversal goes
+  /// triangles and they are not slivers (kSliverFatness) (0..127; 0: the paper, every inner
+  /// pair). The probability model reads a node's surface as many small polygons spread over
+  /// its cells; a few large or long thin triangles are not that, and pairs of them were
+  /// accepted where the triangles pass each other (issue 37: two copies of a 384-triangle pipe
+  /// bundle answered 5.5 % of the poses "collision" wrongly, most with confidence >= 0.9, and
+  /// a 20k-triangle cylinder of 100:1 slivers 1.9 %; 0 with this). Below it the traversal goes
   /// on to the triangles, which is cheap that near the leaves.
   int minTrianglesToAccept = 64;
   /// Wall-clock budget in microseconds; infinity for none. 0 is valid: the roots only.

@@ -94,9 +94,17 @@ struct NodeOccupancy {
                            //           shift[1])) indexes cell (x, y, z)
   float scale[3];          // 12 bytes: slices per local unit along each axis (0: flat axis)
   std::uint8_t shift[3];   //  3 bytes: 2^shift[k] slices along axis k; the shifts sum to 6
-  std::uint8_t triangles;  //  1 byte:  triangles below the node, 255 for 255 or more
+  std::uint8_t triangles : 7;  // triangles below the node, 127 for 127 or more
+  std::uint8_t slivers : 1;    // its triangles are slivers: sum of areas below
+                               // kSliverFatness x sum of squared longest edges
 };
 static_assert(sizeof(NodeOccupancy) == 24, "NodeOccupancy layout");
+
+/// Triangles whose area is below this fraction of their longest edge squared are slivers
+/// (summed over a node: 0.43 for equilateral triangles, 0.005 for 100:1 ones; 0.02 is about
+/// 25:1). The probability model reads a node's surface as small polygons filling its cells;
+/// a node of slivers is never accepted on probability (QuerySettings::minTrianglesToAccept).
+inline constexpr double kSliverFatness = 0.02;
 
 /// Node records laid out so that siblings share a cache line (SiblingPairAllocator).
 template <class T>
