@@ -364,3 +364,25 @@ TEST(MeshShapeApi, MalformedBuffersThrowMeshError) {
 
 }  // namespace
 }  // namespace adb
+
+namespace adb {
+namespace {
+
+// The winding's sign is read per connected part: all outward 1, all inward -1, both 0
+// (two-sided: a room's inward shell holding outward furniture).
+TEST(MeshShapeApi, PartsWoundBothWaysMakeATwoSidedMesh) {
+  const TriangleMesh box = gen::makeBox(Vec3(1, 1, 1));
+  std::vector<Triangle> flipped;
+  for (const Triangle& t : box.triangles()) flipped.push_back(Triangle{t[0], t[2], t[1]});
+  const TriangleMesh shell(box.vertices(), flipped, "shell");
+  const TriangleMesh chair = gen::transformed(gen::makeBox(Vec3(0.2, 0.2, 0.2)),
+                                              Pose{Mat3::Identity(), Vec3(0.3, -0.7, 0)});
+  EXPECT_EQ(MeshData::build(box)->facing, 1);
+  EXPECT_EQ(MeshData::build(shell)->facing, -1);
+  EXPECT_EQ(MeshData::build(gen::merge({box, chair}))->facing, 1);
+  EXPECT_EQ(MeshData::build(gen::merge({shell, chair}))->facing, 0);
+  EXPECT_EQ(MeshData::build(gen::makeRoom())->facing, 0);
+}
+
+}  // namespace
+}  // namespace adb

@@ -102,10 +102,24 @@ void spreadSpeculativeContacts(const MeshShape& mesh0, const btTransform& transf
   }
 }
 
-btVector3 boxCentre(const btCollisionShape* shape, const btTransform& transform) {
+struct WorldBox {
   btVector3 lo, hi;
-  shape->getAabb(transform, lo, hi);
-  return 0.5 * (lo + hi);
+  btVector3 centre() const { return 0.5 * (lo + hi); }
+  // Whether this box is a container of `other`: it holds other's centre and is at least
+  // twice as large across (two bodies of a pile overlap their boxes all the time).
+  bool contains(const WorldBox& other) const {
+    const btVector3 p = other.centre();
+    const bool holds = lo.x() <= p.x() && p.x() <= hi.x() && lo.y() <= p.y() &&
+                       p.y() <= hi.y() && lo.z() <= p.z() && p.z() <= hi.z();
+    const btVector3 size = hi - lo, otherSize = other.hi - other.lo;
+    return holds && size[size.maxAxis()] >= 2 * otherSize[otherSize.maxAxis()];
+  }
+};
+
+WorldBox worldBox(const btCollisionShape* shape, const btTransform& transform) {
+  WorldBox b;
+  shape->getAabb(transform, b.lo, b.hi);
+  return b;
 }
 
 }  // namespace
@@ -197,8 +211,10 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
                                 toPose(transform1), mesh0.data().facing, mesh1.data().facing};
   // The manifold was made when Bullet dispatched the pair, and only this pair writes it: read
   // here, on whichever thread, before this step's points are written.
-  const Vec3 hint = detail::separationHint(lastNormalsOnB(), boxCentre(shape0, transform0),
-                                           boxCentre(shape1, transform1));
+  const WorldBox box0 = worldBox(shape0, transform0), box1 = worldBox(shape1, transform1);
+  const bool nested = box0.contains(box1) || box1.contains(box0);
+  const Vec3 hint =
+      detail::separationHint(lastNormalsOnB(), box0.centre(), box1.centre(), nested);
   m_points.clear();
   m_pointCount = ContactCount{};
   // A pair at rest keeps its points' normals (addExactContacts); one in motion takes each

@@ -1,6 +1,9 @@
 // MeshShape: the Bullet-facing shape over a shared ADB-tree.
 #include "adb/bullet/mesh_shape.h"
 
+#include <numeric>
+#include <vector>
+
 #include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
 
 #include <cmath>
@@ -15,18 +18,39 @@ namespace adb {
 namespace {
 
 
+// The root of vertex v's part (union-find with path halving).
+std::uint32_t partOf(std::vector<std::uint32_t>& parent, std::uint32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
 // The winding's sign from the signed volume (divergence theorem), taken about the box centre
-// so that a mesh far from the origin does not lose it to cancellation.
+// so that a mesh far from the origin does not lose it to cancellation: per connected part,
+// and 0 (two-sided) when the parts disagree. A room's shell faces inward and its furniture
+// outward: one sign for the whole turned the floor's back to the bodies on it, and every
+// contact with it was dropped as facing away (robot arms fell through; demos/scenes/
+// robot_room.json).
 int facingOf(const TriangleMesh& mesh, const MassProperties& mass) {
   if (!mass.closed) return 0;
   const Vec3 c = mesh.bounds().center();
-  double volume6 = 0.0;
+  const std::size_t n = mesh.vertices().size();
+  std::vector<std::uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (const Triangle& t : mesh.triangles()) {
+    for (int k = 1; k < 3; ++k) parent[partOf(parent, t[k])] = partOf(parent, t[0]);
+  }
+  std::vector<double> volume6(n, 0.0);  // per part, at its root
   for (const Triangle& t : mesh.triangles()) {
     const Vec3 a = mesh.vertices()[t[0]] - c, b = mesh.vertices()[t[1]] - c,
                d = mesh.vertices()[t[2]] - c;
-    volume6 += a.dot(b.cross(d));
+    volume6[partOf(parent, t[0])] += a.dot(b.cross(d));
   }
-  return volume6 > 0.0 ? 1 : volume6 < 0.0 ? -1 : 0;
+  bool outward = false, inward = false;
+  for (double v : volume6) {
+    outward = outward || v > 0.0;
+    inward = inward || v < 0.0;
+  }
+  return outward == inward ? 0 : outward ? 1 : -1;
 }
 
 // The principal frame in mesh coordinates: origin at the centre of mass, axes the principal

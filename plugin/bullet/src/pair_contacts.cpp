@@ -128,10 +128,13 @@ bool addNearContact(const PosedPair& pair, const Vec3 a[3], const Vec3 b[3],
 }  // namespace
 
 Vec3 separationHint(const btVector3& lastNormalsOnB, const btVector3& boxCentre0,
-                    const btVector3& boxCentre1) {
+                    const btVector3& boxCentre1, bool nested) {
   // Bullet's normal on B points from body 1 towards body 0: the hint is its opposite.
   const Vec3 sum = -fromBt(lastNormalsOnB);
   if (sum.squaredNorm() > 0.0 && sum.allFinite()) return sum;
+  // Inside a container (a room, a bowl) the direction between the boxes' centres says
+  // nothing: from a room's centre to a body on its floor it points down, through the floor.
+  if (nested) return Vec3::Zero();
   return fromBt(boxCentre1 - boxCentre0);
 }
 
