@@ -113,10 +113,14 @@ void addOptions(CLI::App& app, Options& o) {
   app.add_option("--mesh", o.meshes, "pile: bodies are copies of this mesh file (any format "
                                      "assimp reads), scaled to 0.8 across; repeat to cycle")
       ->check(CLI::ExistingFile);
+  std::vector<std::string> models = adb::gen::modelNames();
+  for (const std::string& name : adb::gen::realMeshModelNames()) models.push_back(name);
   app.add_option("--model", o.pile.model, "pile: every body this generated model (pipes, "
-                                         "gears, knot, torus, sphere, lock) at --triangles, "
-                                         "0.8 across")
-      ->check(CLI::IsMember(adb::gen::modelNames()))
+                                         "gears, knot, torus, sphere, lock; slivers: a CAD-like "
+                                         "cylinder of 100:1 triangles; robot: a 296-triangle "
+                                         "arm, room: a low-poly room) at --triangles (room and "
+                                         "robot have one resolution), 0.8 across")
+      ->check(CLI::IsMember(models))
       ->excludes("--mesh");
   app.add_flag("--no-sleep", o.noSleep, "pile: Bullet's deactivation off (bodies never sleep)");
   app.add_option("--bodies", o.pile.bodies, "pile: bodies (24)")->check(CLI::PositiveNumber);

@@ -66,7 +66,7 @@ std::vector<ShapeSpec> bodyShapes(const PileSpec& spec) {
     s.kind = ShapeSpec::Kind::Mesh;
     s.name = spec.model;
     // A catalogue model comes at its own size: scaled to the pile's, as a file's is.
-    s.given = std::make_shared<const TriangleMesh>(gen::makeModel(spec.model, spec.trianglesPerBody));
+    s.given = std::make_shared<const TriangleMesh>(gen::makeAnyModel(spec.model, spec.trianglesPerBody));
     s.size = kBodySize;
     shapes.push_back(std::move(s));
     return shapes;

@@ -33,6 +33,7 @@ TriangleMesh scaled(const TriangleMesh& mesh, double scale) {
 
 std::vector<std::string> generatedModelNames() {
   std::vector<std::string> names = gen::modelNames();
+  for (const std::string& name : gen::realMeshModelNames()) names.push_back(name);
   names.emplace_back("gear");
   names.emplace_back("box");
   return names;
@@ -41,7 +42,8 @@ std::vector<std::string> generatedModelNames() {
 TriangleMesh generatedMesh(const ShapeSpec& shape) {
   if (shape.model == "gear") return scaled(gearMesh(shape.teeth, shape.triangles), shape.scale);
   if (shape.model == "box") return scaled(boxMesh(shape.halfExtents, shape.triangles), shape.scale);
-  return scaled(gen::makeModel(shape.model, shape.triangles), shape.scale);
+  // (A fixed model, "room" or "robot", ignores "triangles".)
+  return scaled(gen::makeAnyModel(shape.model, shape.triangles), shape.scale);
 }
 
 }  // namespace adb::scene

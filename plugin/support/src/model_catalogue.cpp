@@ -169,4 +169,10 @@ TriangleMesh makeFixedModel(const std::string& name) {
                   joinedNames(kFixedModels));
 }
 
+TriangleMesh makeAnyModel(const std::string& name, std::size_t targetTriangles) {
+  const std::vector<std::string> fixed = fixedModelNames();
+  if (std::find(fixed.begin(), fixed.end(), name) != fixed.end()) return makeFixedModel(name);
+  return makeModel(name, targetTriangles);
+}
+
 }  // namespace adb::gen

@@ -145,6 +145,10 @@ TriangleMesh makeModel(const std::string& name, std::size_t targetTriangles);
 /// MeshError for an unknown name; the message lists the known names.
 TriangleMesh makeFixedModel(const std::string& name);
 
+/// Any named model: a fixed one (fixedModelNames()) as it is, the others (modelNames(),
+/// "slivers") by makeModel at targetTriangles. Throws MeshError for an unknown name.
+TriangleMesh makeAnyModel(const std::string& name, std::size_t targetTriangles);
+
 /// The aspect ratio of triangle i of `mesh`: its longest edge over its height onto that edge
 /// (longest^2 / (2 area)). 2 / sqrt(3) for an equilateral triangle, about L / w for a sliver L
 /// long and w wide; infinity for a degenerate one.
