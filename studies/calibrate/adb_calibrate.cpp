@@ -2,7 +2,9 @@
 // models and checks it on meshes it never saw.
 //
 // The fit set: the six generated models at --triangles, the sliver cylinder at --triangles,
-// the pipe bundle at 400 triangles and the 296-triangle robot arm.
+// the pipe bundle at 400 triangles and the 296-triangle robot arm; checked besides the
+// --mesh files: that arm anywhere in the generated room (two different models, FCL's
+// robot-in-a-room poses).
 // For every benchmark pose (Zachmann's procedure: distances 0.4 to 2.0, random rotations) whose
 // root boxes overlap, each ADB quality setting is run as one Traversal stepped towards work
 // budgets of 1, 2, 4, ... node pairs (a step makes at least one expansion, so the states sit
@@ -69,8 +71,9 @@ constexpr Quality kQualities[] = {
     {0.99, 10, false}, {0.9, 5, false}, {0.9, 1, false}, {0.5, 1, false}, {0.99, 10, true}};
 
 // The samples of one pose under one quality setting.
-void sampleTraversal(const adb::AdbTree& tree, const adb::PosePair& p, const Quality& q,
-                     bool truth, std::vector<Sample>& out, std::vector<Sample>& quality) {
+void sampleTraversal(const adb::AdbTree& treeA, const adb::AdbTree& treeB,
+                     const adb::PosePair& p, const Quality& q, bool truth,
+                     std::vector<Sample>& out, std::vector<Sample>& quality) {
   adb::QuerySettings s;
   s.pMin = q.pMin;
   s.kMin = q.kMin;
@@ -78,7 +81,7 @@ void sampleTraversal(const adb::AdbTree& tree, const adb::PosePair& p, const Qua
     s.pruneImprobable = true;
     s.minTrianglesToAccept = 0;
   }
-  adb::Traversal t(tree, p.a, tree, p.b, s);
+  adb::Traversal t(treeA, p.a, treeB, p.b, s);
   for (int c = 0; c < kCheckpoints; ++c) {
     // A step makes at least one expansion, so the traversal may already be past this budget:
     // its state was sampled then, and is not counted twice.
@@ -112,8 +115,15 @@ struct Collected {
   ModelSamples budget, quality;
 };
 
-Collected collect(const std::string& name, const adb::TriangleMesh& mesh, int rotations) {
-  const adb::AdbTree tree(mesh);
+// How the second body is placed: Zachmann's distances, or anywhere inside the first's box
+// (FCL's robot in a room: adb::insidePoses).
+enum class Placement { Distances, Inside };
+
+// The samples of mesh A against mesh B (a second copy of A when they are the same), 17 x
+// `rotations` poses.
+Collected collect(const std::string& name, const adb::TriangleMesh& meshA,
+                  const adb::TriangleMesh& meshB, Placement placement, int rotations) {
+  const adb::AdbTree treeA(meshA), treeB(meshB);
   adb::QueryScratch scratch;
   adb::QuerySettings exact;
   exact.mode = adb::QueryMode::Exact;
@@ -121,11 +131,14 @@ Collected collect(const std::string& name, const adb::TriangleMesh& mesh, int ro
   Collected m{{name, {}}, {name, {}}};
   for (int step = 0; step <= 16; ++step) {
     for (int r = 0; r < rotations; ++r) {
-      const adb::PosePair p = adb::benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng);
-      const adb::QueryResult truth = adb::collide(tree, p.a, tree, p.b, exact, scratch);
+      const adb::PosePair p =
+          placement == Placement::Inside
+              ? adb::insidePoses(meshA.bounds(), meshB.bounds(), rng)
+              : adb::benchmarkPoses(meshA.bounds(), meshB.bounds(), 0.4 + 0.1 * step, rng);
+      const adb::QueryResult truth = adb::collide(treeA, p.a, treeB, p.b, exact, scratch);
       if (truth.nodePairs <= 1 && !truth.collides) continue;  // root boxes apart: not counted
       for (const Quality& q : kQualities) {
-        sampleTraversal(tree, p, q, truth.collides, m.budget.samples, m.quality.samples);
+        sampleTraversal(treeA, treeB, p, q, truth.collides, m.budget.samples, m.quality.samples);
       }
     }
   }
@@ -357,7 +370,7 @@ void addOptions(CLI::App& app, Options& o) {
   app.description(
       "adb-calibrate: fits the collision estimate's weights (adb/core/collision_estimate.h) on\n"
       "the generated models (knot, pipes, gears, lock, torus, sphere, slivers at --triangles;\n"
-      "pipes at 400 triangles, the robot arm) and checks them on the\n"
+      "pipes at 400 triangles, the robot arm) and checks them on the arm in the room and the\n"
       "--mesh files; prints the weights as C++ and the calibration error per model and budget\n"
       "(docs/probability-model.md).");
   constexpr long long kNoLimit = std::numeric_limits<long long>::max();
@@ -388,15 +401,25 @@ int run(const Options& o) {
     budget.push_back(std::move(c.budget));
     quality.push_back(std::move(c.quality));
   };
+  const auto twoCopies = [&](const std::string& name, const adb::TriangleMesh& mesh) {
+    return collect(name, mesh, mesh, Placement::Distances, o.rotations);
+  };
   for (const char* name : {"knot", "pipes", "gears", "lock", "torus", "sphere", "slivers"}) {
-    add(collect(name, adb::gen::makeModel(name, o.triangles), o.rotations), fitSet, fitQuality);
+    add(twoCopies(name, adb::gen::makeModel(name, o.triangles)), fitSet, fitQuality);
   }
   // Meshes as they come (issue 37): few large triangles, as robot and environment models
   // are, beside the dense ones (slivers above: a CAD cylinder of 100:1 triangles).
-  add(collect("pipes-400", adb::gen::makeModel("pipes", 400), o.rotations), fitSet, fitQuality);
-  add(collect("robot", adb::gen::makeFixedModel("robot"), o.rotations), fitSet, fitQuality);
+  add(twoCopies("pipes-400", adb::gen::makeModel("pipes", 400)), fitSet, fitQuality);
+  add(twoCopies("robot", adb::gen::makeFixedModel("robot")), fitSet, fitQuality);
+  // Checked, not fitted: two different models, the arm anywhere in the room. Fitted, its
+  // budget stops took every evidence weight but the expected cells to 0 and doubled the
+  // calibration error of the others (knot 0.071 -> 0.144), its own staying at 0.21: the
+  // evidence does not tell a robot in a room apart (docs/probability-model.md, section 7).
+  add(collect("room+robot", adb::gen::makeFixedModel("room"), adb::gen::makeFixedModel("robot"),
+              Placement::Inside, o.rotations),
+      checkSet, checkQuality);
   for (const std::string& path : o.meshes) {
-    add(collect(path, adb::io::loadMesh(path), o.rotations), checkSet, checkQuality);
+    add(twoCopies(path, adb::io::loadMesh(path)), checkSet, checkQuality);
   }
   if (!o.samplesPath.empty()) {
     writeSamples(o.samplesPath, fitSet, checkSet);
