@@ -414,11 +414,6 @@ TEST(AdbAllocation, RepeatedQueriesAllocateNothing) {
   EXPECT_EQ(g_allocations.load() - before, 0u);
 }
 
-}  // namespace
-}  // namespace adb
-
-namespace adb {
-namespace {
 
 TEST(ColdStart, TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond) {
   // ctest runs each test in a process of its own: this is the process's first query. The
@@ -447,11 +442,6 @@ TEST(ColdStart, TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond) {
   EXPECT_LT(1e6 * cold.seconds, 10.0 * static_cast<double>(kSlack) * settings.budgetMicros);
 }
 
-}  // namespace
-}  // namespace adb
-
-namespace adb {
-namespace {
 
 // A scratch's buffers are sized by the trees when it meets them, not by the first query:
 // exact-mode queries from a far pose to deep overlaps, witnesses capped at their default,
@@ -477,11 +467,6 @@ TEST(ColdStart, AnExactScratchIsSizedByTheTreesNotByItsFirstQuery) {
   EXPECT_EQ(scratch.capacityBytes(), sized);
 }
 
-}  // namespace
-}  // namespace adb
-
-namespace adb {
-namespace {
 
 // Meshes as they come (issue 37): a low-poly pipe bundle (384 triangles, thin walls side by
 // side) and a cylinder of 51:1 slivers, each against itself at the benchmark's distances,
@@ -532,11 +517,6 @@ TEST(MeshesAsTheyCome, ThePapersRulesAnswerLowPolyPipesWronglyAndConfidently) {
   EXPECT_GT(n.confidentlyWrong, n.poses / 100) << n.wrong << " wrong of " << n.poses;
 }
 
-}  // namespace
-}  // namespace adb
-
-namespace adb {
-namespace {
 
 // A dense cylinder of 100:1 slivers (20k triangles, as CAD exports tessellate): every node has
 // enough triangles to be accepted, but its slivers do not fill its cells as the model reads

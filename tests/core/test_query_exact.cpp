@@ -75,15 +75,7 @@ TEST(ExactMode, CollectsEveryIntersectingPairOfSlivers) {
   for (int i = 0; i < 60; ++i) {
     const PosePair p = benchmarkPoses(mesh.bounds(), 0.3 + 0.02 * i, rng);
     const QueryResult r = collide(tree, p.a, tree, p.b, test::collectEverySettings(), scratch);
-    std::size_t expected = 0;
-    for (const Triangle& ta : mesh.triangles()) {
-      for (const Triangle& tb : mesh.triangles()) {
-        expected += trianglesIntersect(
-            p.a.apply(mesh.vertices()[ta[0]]), p.a.apply(mesh.vertices()[ta[1]]),
-            p.a.apply(mesh.vertices()[ta[2]]), p.b.apply(mesh.vertices()[tb[0]]),
-            p.b.apply(mesh.vertices()[tb[1]]), p.b.apply(mesh.vertices()[tb[2]]));
-      }
-    }
+    const std::size_t expected = test::bruteForceIntersectingPairs(mesh, p.a, mesh, p.b);
     EXPECT_EQ(r.witnessCount, expected) << "pose " << i;
     collided += expected > 0 ? 1 : 0;
   }
@@ -137,16 +129,7 @@ TEST(ExactMode, CollectsEveryIntersectingTrianglePair) {
   std::mt19937_64 rng(test::kSeed);
   const PosePair p = benchmarkPoses(mesh.bounds(), 0.5, rng);
   const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
-  // Brute-force count of intersecting pairs.
-  std::size_t expected = 0;
-  for (const Triangle& ta : mesh.triangles()) {
-    for (const Triangle& tb : mesh.triangles()) {
-      expected += trianglesIntersect(
-          p.a.apply(mesh.vertices()[ta[0]]), p.a.apply(mesh.vertices()[ta[1]]),
-          p.a.apply(mesh.vertices()[ta[2]]), p.b.apply(mesh.vertices()[tb[0]]),
-          p.b.apply(mesh.vertices()[tb[1]]), p.b.apply(mesh.vertices()[tb[2]]));
-    }
-  }
+  const std::size_t expected = test::bruteForceIntersectingPairs(mesh, p.a, mesh, p.b);
   ASSERT_GT(expected, 0u);
   EXPECT_EQ(r.witnessCount, expected);
   EXPECT_EQ(r.witnessesDropped, 0u);

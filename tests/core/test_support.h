@@ -29,6 +29,21 @@ inline bool bruteForceCollide(const TriangleMesh& a, const Pose& pa, const Trian
   return false;
 }
 
+/// The oracle's count: intersecting triangle pairs of the two posed meshes, all pairs tried.
+inline std::size_t bruteForceIntersectingPairs(const TriangleMesh& a, const Pose& pa,
+                                               const TriangleMesh& b, const Pose& pb) {
+  std::size_t count = 0;
+  for (const Triangle& ta : a.triangles()) {
+    const Vec3 a0 = pa.apply(a.vertices()[ta[0]]), a1 = pa.apply(a.vertices()[ta[1]]),
+               a2 = pa.apply(a.vertices()[ta[2]]);
+    for (const Triangle& tb : b.triangles()) {
+      count += trianglesIntersect(a0, a1, a2, pb.apply(b.vertices()[tb[0]]),
+                                  pb.apply(b.vertices()[tb[1]]), pb.apply(b.vertices()[tb[2]]));
+    }
+  }
+  return count;
+}
+
 inline QuerySettings exactSettings() {
   QuerySettings s;
   s.mode = QueryMode::Exact;
