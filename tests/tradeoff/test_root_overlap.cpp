@@ -21,6 +21,14 @@ Pose rotZ(double angle, const Vec3& t) {
   return Pose{Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix(), t};
 }
 
+// FCL's box is centred on its frame: the frame of `box` (mesh coordinates) posed by `pose`.
+fcl::Transform3d boxFrame(const Pose& pose, const Aabb& box) {
+  fcl::Transform3d t = fcl::Transform3d::Identity();
+  t.linear() = pose.rotation;
+  t.translation() = pose.rotation * box.center() + pose.translation;
+  return t;
+}
+
 TEST(RootOverlap, HandMadeCases) {
   const Aabb cube{Vec3(-1, -1, -1), Vec3(1, 1, 1)};
   EXPECT_TRUE(rootBoxesOverlap(cube, Pose{}, Pose{}));
@@ -41,14 +49,9 @@ TEST(RootOverlap, AgreesWithFclBoxBoxOnRandomPoses) {
   const int n = 4000;
   for (int i = 0; i < n; ++i) {
     const PosePair p = benchmarkPoses(kBox, distance(rng), rng);
-    // FCL's box is centred on its frame: move the frame to the box centre.
-    fcl::Transform3d ta = fcl::Transform3d::Identity(), tb = fcl::Transform3d::Identity();
-    ta.linear() = p.a.rotation;
-    ta.translation() = p.a.rotation * kBox.center() + p.a.translation;
-    tb.linear() = p.b.rotation;
-    tb.translation() = p.b.rotation * kBox.center() + p.b.translation;
     fcl::CollisionResultd result;
-    fcl::collide(box.get(), ta, box.get(), tb, fcl::CollisionRequestd(1, false), result);
+    fcl::collide(box.get(), boxFrame(p.a, kBox), box.get(), boxFrame(p.b, kBox),
+                 fcl::CollisionRequestd(1, false), result);
     const bool ours = rootBoxesOverlap(kBox, p.a, p.b);
     EXPECT_EQ(ours, result.isCollision()) << "pose " << i;
     overlaps += ours ? 1 : 0;
@@ -73,13 +76,9 @@ TEST(RootOverlap, TwoDifferentBoxesAgreeWithFclBoxBox) {
   for (int i = 0; i < n; ++i) {
     const PosePair p = i % 2 == 0 ? insidePoses(around, small, rng)
                                   : benchmarkPoses(kBox, small, distance(rng), rng);
-    fcl::Transform3d ta = fcl::Transform3d::Identity(), tb = fcl::Transform3d::Identity();
-    ta.linear() = p.a.rotation;
-    ta.translation() = p.a.rotation * kBox.center() + p.a.translation;
-    tb.linear() = p.b.rotation;
-    tb.translation() = p.b.rotation * small.center() + p.b.translation;
     fcl::CollisionResultd result;
-    fcl::collide(boxA.get(), ta, boxB.get(), tb, fcl::CollisionRequestd(1, false), result);
+    fcl::collide(boxA.get(), boxFrame(p.a, kBox), boxB.get(), boxFrame(p.b, small),
+                 fcl::CollisionRequestd(1, false), result);
     const bool ours = rootBoxesOverlap(kBox, p.a, small, p.b);
     EXPECT_EQ(ours, result.isCollision()) << "pose " << i;
     EXPECT_EQ(ours, rootBoxesOverlap(small, p.b, kBox, p.a)) << "pose " << i << ": symmetric";
