@@ -110,7 +110,11 @@ class FrameScheduler {
   /// within the last ManifoldAlgorithm::kLandingSteps steps (its body is landing).
   static bool sweeps(const DeferredPair& pair);
   /// Whether a whole pair's body is arriving: nothing to keep, moved, near last time.
-  static bool arriving(const DeferredPair& pair);
+  bool arriving(const DeferredPair& pair) const;
+  /// Whether a pair with the world has a moving body that another pair with the world holds
+  /// up (noteSupported()).
+  bool supported(const DeferredPair& pair) const;
+  void noteSupported();
   static std::uint64_t firstWanted(const DeferredPair& pair);
   void settle(DeferredPair& pair, const FrameSettings& settings);
   double writePair(DeferredPair& pair, const FrameSettings& settings);
@@ -129,6 +133,9 @@ class FrameScheduler {
 
   std::vector<DeferredPair> m_pairs;   // mesh-mesh, refined (reused: no allocation)
   std::vector<DeferredPair> m_wholes;  // the others: run whole or not at all
+  // Bodies the world holds up this step: the moving body of a pair with a static or
+  // kinematic body that holds contacts. Sorted, for supported(). Reused: no allocation.
+  std::vector<const btCollisionObject*> m_supported;
   const btDispatcherInfo* m_info = nullptr;  // the dispatch's, during run()
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   std::vector<std::uint32_t> m_batch; // the pairs of a round: indices into m_pairs
