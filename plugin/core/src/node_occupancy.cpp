@@ -82,9 +82,10 @@ std::uint64_t cellsTouched(const Node& n, const NodeOccupancy& o, const Vec3& a,
 
 // Above this many triangles a node's cells are those its children's cells reach: a triangle
 // small against the node's cells (as most are, that high) falls in one cell either way, and
-// testing every triangle at every level made the build 10 times slower (0.05 -> 0.5 s for
-// 100k triangles). The children's cells are grown by the margins, so the union stays
-// conservative; it is a little looser than the triangles' own.
+// testing every triangle at every level made the build 10 times slower (`adb-bench-core
+// --benchmark_filter=BM_BuildApproximate`: 0.05 -> 0.5 s at 100k triangles; 0.31 s per 100k
+// with this, SAH and the cells together). The children's cells are grown by the margins, so
+// the union stays conservative; it is a little looser than the triangles' own.
 constexpr std::uint32_t kTrianglesTestedDirectly = 64;
 
 // The cells of node n (layout o) that the occupied cells of its child reach.
@@ -98,10 +99,12 @@ std::uint64_t cellsOfChild(const Node& n, const NodeOccupancy& o, const Node& ch
   for (int k = 0; k < 3; ++k) {
     const int slices = 1 << co.shift[k], parentSlices = 1 << o.shift[k];
     const double width = co.scale[k] > 0.0f ? 1.0 / co.scale[k] : 0.0;
+    const double grow = kBuildSliceMargin * width + absolute;
     for (int i = 0; i < slices; ++i) {
-      const double grow = kBuildSliceMargin * width + absolute;
-      const double sliceLo = childLo[k] + i * width - grow, sliceHi = childLo[k] + (i + 1) * width + grow;
-      from[k][i] = occupancySlice((sliceLo - lo[k]) * o.scale[k] - kBuildSliceMargin, parentSlices, 0);
+      const double sliceLo = childLo[k] + i * width - grow;
+      const double sliceHi = childLo[k] + (i + 1) * width + grow;
+      from[k][i] =
+          occupancySlice((sliceLo - lo[k]) * o.scale[k] - kBuildSliceMargin, parentSlices, 0);
       to[k][i] = occupancySlice((sliceHi - lo[k]) * o.scale[k] + kBuildSliceMargin, parentSlices,
                                 parentSlices - 1);
     }
@@ -117,16 +120,26 @@ std::uint64_t cellsOfChild(const Node& n, const NodeOccupancy& o, const Node& ch
   return cells;
 }
 
-// Whether triangles [first, last) are slivers taken together (kSliverFatness).
-bool isSlivers(const std::vector<Vec3>& verts, const std::vector<Triangle>& tris,
-               std::uint32_t first, std::uint32_t last) {
-  double area = 0.0, longest = 0.0;
-  for (std::uint32_t t = first; t < last; ++t) {
-    const Vec3 &a = verts[tris[t][0]], &b = verts[tris[t][1]], &c = verts[tris[t][2]];
-    area += 0.5 * (b - a).cross(c - a).norm();
-    longest += std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+// Per node, the sum of its triangles' squared longest edges, children first (sums add up the
+// tree, as NodeSurface::area does): with the area, whether the node is slivers
+// (kSliverFatness), without visiting every triangle again at every level.
+std::vector<double> longestEdgesSquared(const AdbTree& tree) {
+  const auto& nodes = tree.nodes();
+  const auto& verts = tree.localVertices();
+  const auto& tris = tree.triangles();
+  std::vector<double> sum(nodes.size(), 0.0);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    const Node& n = nodes[i];
+    if (!n.isLeaf()) {
+      sum[i] = sum[n.firstChild()] + sum[n.firstChild() + 1];
+      continue;
+    }
+    for (std::uint32_t t = n.firstTriangle(); t < n.firstTriangle() + n.triangleCount(); ++t) {
+      const Vec3 &a = verts[tris[t][0]], &b = verts[tris[t][1]], &c = verts[tris[t][2]];
+      sum[i] += std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    }
   }
-  return area < kSliverFatness * longest;
+  return sum;
 }
 
 }  // namespace
@@ -154,6 +167,7 @@ void computeOccupancy(AdbTree& tree) {
   const auto& verts = tree.localVertices();
   const auto& tris = tree.triangles();
   const auto ranges = triangleRanges(tree);
+  const std::vector<double> longest = longestEdgesSquared(tree);
   auto& occupancy = TreeBuilderAccess::occupancy(tree);
   occupancy.resize(nodes.size());
   // Children first (a child's index is above its parent's).
@@ -162,7 +176,7 @@ void computeOccupancy(AdbTree& tree) {
     NodeOccupancy o = occupancyLayout(n.boxHi() - n.boxLo());
     o.cells = 0;
     o.triangles = std::min<std::uint32_t>(ranges[i].second - ranges[i].first, 127) & 0x7Fu;
-    o.slivers = isSlivers(verts, tris, ranges[i].first, ranges[i].second) ? 1 : 0;
+    o.slivers = tree.surfaces()[i].area < kSliverFatness * longest[i] ? 1 : 0;
     if (n.isLeaf() || ranges[i].second - ranges[i].first <= kTrianglesTestedDirectly) {
       for (std::uint32_t t = ranges[i].first; t < ranges[i].second && o.cells != ~0ull; ++t) {
         o.cells |= cellsTouched(n, o, verts[tris[t][0]], verts[tris[t][1]], verts[tris[t][2]]);

@@ -11,10 +11,10 @@
 // the triangles' sizes, so a node mixing a room's walls with its furniture, or a CAD part's
 // long slivers with its small faces, keeps a box as large as its largest triangle at every
 // level below. Exact mode against FCL on meshes as they come was 0.13x (a robot in a room) and
-// 0.63-0.93x (CAD slivers). Measured with this rule, exact mode per query (2 x 3,200 benchmark
-// poses, same machine): quadrotor_base 20.3 -> 5.5 us, diff_arm 4.0 -> 2.0, diff_leftshaft
-// 22.6 -> 14.4, room and robot 28.9 -> 14.9, and on dense meshes knot 20.6 -> 13.1, lock 4.5 ->
-// 2.5, teddy 11.6 -> 8.4. The balance constraint keeps what the probability model reads from
+// 0.63-0.93x (CAD slivers). With this rule, exact mode against FCL on the same poses
+// (docs/study.md, run 4: `adb-tradeoff ... --methods adb,exact,fcl`): quadrotor_base 2.25x,
+// diff_arm 2.66x, knot 1.92x, gears 3.19x; the robot in the room 0.27x (0.13x with median
+// splits, same run otherwise). The balance constraint keeps what the probability model reads from
 // depth (LB = (dA + dB) / (dmaxA + dmaxB), paper section 3.6.3: how far a node is from a leaf)
 // close to its meaning in a balanced tree, and the depth within a small factor of log2(n).
 // The build stays O(n log n).
@@ -141,8 +141,8 @@ void buildHierarchy(AdbTree& tree, const TriangleMesh& mesh, int maxLeafTriangle
   nodes.push_back(Node{});
   std::vector<BuildItem> stack{{0u, 0u, static_cast<std::uint32_t>(n), 0}};
   // Twice a balanced tree's depth: below it, median splits (the depth stays logarithmic).
-  const int maxSahDepth =
-      2 * static_cast<int>(std::ceil(std::log2(std::max(1.0, static_cast<double>(n) / maxLeafTriangles)))) + 2;
+  const double leaves = std::max(1.0, static_cast<double>(n) / maxLeafTriangles);
+  const int maxSahDepth = 2 * static_cast<int>(std::ceil(std::log2(leaves))) + 2;
   int maxDepth = 0;
   while (!stack.empty()) {
     const BuildItem item = stack.back();

@@ -84,10 +84,10 @@ struct QuerySettings {
   /// triangles and they are not slivers (kSliverFatness) (0..127; 0: the paper, every inner
   /// pair). The probability model reads a node's surface as many small polygons spread over
   /// its cells; a few large or long thin triangles are not that, and pairs of them were
-  /// accepted where the triangles pass each other (issue 37: two copies of a 384-triangle pipe
-  /// bundle answered 5.5 % of the poses "collision" wrongly, most with confidence >= 0.9, and
-  /// a 20k-triangle cylinder of 100:1 slivers 1.9 %; 0 with this). Below it the traversal goes
-  /// on to the triangles, which is cheap that near the leaves.
+  /// accepted where the triangles pass each other (a 384-triangle pipe bundle and a 20k
+  /// cylinder of 100:1 slivers answer wrongly under the paper's rule and never with this:
+  /// tests MeshesAsTheyCome.*, docs/probability-model.md section 7). Below it the traversal
+  /// goes on to the triangles, which is cheap that near the leaves.
   int minTrianglesToAccept = 64;
   /// Wall-clock budget in microseconds; infinity for none. 0 is valid: the roots only.
   double budgetMicros = std::numeric_limits<double>::infinity();
@@ -111,7 +111,7 @@ struct QuerySettings {
   /// are dropped either way, as a proof (AdbTree::occupancy()). The rule was the main source
   /// of wrong "no" answers, most with confidence >= 0.99 on meshes of slivers (a cell crossed
   /// by slivers holds too little area to count); since the cells prune, keeping the pairs
-  /// costs 0-12 % more node pairs (docs/probability-model.md, "Slivers and low-poly meshes").
+  /// costs few node pairs (docs/probability-model.md, section 7, with the command).
   bool pruneImprobable = false;
   /// ADB mode: keep accepted node pairs (p > pMin) as witnesses. Contact generation turns
   /// them off so that the witness slots hold intersecting triangle pairs only.
