@@ -20,6 +20,14 @@
 
 namespace adb::detail {
 
+/// Contacts of a mesh with a box or a plane: the tree is cut into 2^kContactRegionLevel
+/// regions, each giving its deepest contacts (adb::forEachDeepestTriangleNear): a manifold
+/// keeps 4 points, and 16 candidates spread over the mesh leave it the choice. Regions at
+/// level 4 give resting bodies their support (docs/bullet-results.md); a node or triangle
+/// that cannot reach deeper than its region's best is not tested (no slack: ties, a flat
+/// face on a floor, are skipped either way).
+inline constexpr int kContactRegionLevel = 4;
+
 /// One candidate, in Bullet's terms for the result's body order.
 struct CandidateContact {
   btVector3 normalOnB;  ///< unit, on body 1, pointing towards body 0

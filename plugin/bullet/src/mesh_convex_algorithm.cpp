@@ -23,15 +23,10 @@
 namespace adb {
 namespace {
 
-// Mesh-box contacts: the tree is cut into 2^4 regions, each giving its deepest contacts (a
-// manifold keeps 4 points; 16 candidates spread over the mesh leave it the choice), and a
-// node or triangle that cannot reach deeper than its region's best is not tested. A slack of
-// a hundredth of the reach missed resting contacts by 17 % of their depth, a thousandth by
-// 2 % once the trees were built by SAH (MeshConvexAgainstBullet asks for 0.1 %): none now,
-// as ties (a flat face on a floor) are skipped either way.
-constexpr int kContactRegionLevel = 4;
+// Mesh-box contacts are sampled per region (detail::kContactRegionLevel). A slack of a
+// hundredth of the reach missed resting contacts by 17 % of their depth, a thousandth by 2 %
+// once the trees were built by SAH (MeshConvexAgainstBullet asks for 0.1 %): none now.
 constexpr double kDepthSlack = 0.0;
-
 
 // The convex shape in the tree's local frame, as the closed-form tests need it.
 struct LocalConvex {
@@ -306,7 +301,7 @@ std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& s
   if (local.kind == LocalConvex::Box) {
     // A box (a floor, a wall) has hundreds of triangles within reach of a resting body:
     // each region of the tree gives its deepest contacts (forEachDeepestTriangleNear).
-    visited += forEachDeepestTriangleNear(tree, local.box, f.reach, kContactRegionLevel,
+    visited += forEachDeepestTriangleNear(tree, local.box, f.reach, detail::kContactRegionLevel,
                                          kDepthSlack * f.reach, contactsOf);
   } else {
     visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) { contactsOf(t); });
