@@ -493,7 +493,9 @@ void FrameScheduler::noteSupported() {
   m_supported.clear();
   for (const std::vector<DeferredPair>* pairs : {&m_pairs, &m_wholes}) {
     for (const DeferredPair& p : *pairs) {
-      if (!anchored(p) || !p.algorithm->holdsContacts()) continue;
+      // Held up, not merely touched: a body falling past a wall it brushed (one point)
+      // counted as held, its pair with the box floor was skipped, and it fell through.
+      if (!holdsUp(p)) continue;
       m_supported.push_back(p.object0->isStaticOrKinematicObject() ? p.object1 : p.object0);
     }
   }
