@@ -466,21 +466,28 @@ void FrameScheduler::runOnPool(std::size_t jobs, Job& job) {
 // left (runWhole), so it goes first: run after the pairs that had contacts, it overran the
 // budget by what it cost (BudgetAllPairs' mixed pile: p99 1.09x the budget, a gear landing on
 // the plane taking 343 node pairs where 99 were left).
-// A pair with the world that holds its body up (holdsUp) whose body has moved past the
-// contact breaking threshold since it last ran: its kept contacts no longer say where the body
-// rests on it. It runs whatever the budget, as an arriving pair does, and goes first with them:
-// skipped while the walls beside a stack of gears on a plane took a 300 node-pair budget, a
-// gear tipped over its one kept point and sank 0.17 into the plane. Walls are not among them
-// (running every pair with the world whose body moved overran the budget 1.3x,
-// docs/bullet-results.md); since the plane's contacts are sampled per region, a floor pair
-// costs a resting gear tens of units, not a thousand.
-bool FrameScheduler::slipping(const DeferredPair& pair) {
-  return !(pair.motion < pair.algorithm->breakingThreshold()) && holdsUp(pair);
+// A pair with the world that is losing its hold on its body: its kept contacts, re-measured
+// at this step's poses, are deeper than the breaking threshold (the body is sinking into the
+// world), or they hold the body up (holdsUp) and it has moved past the breaking threshold
+// since the pair last ran (they no longer say where it rests). It runs whatever the budget,
+// as an arriving pair does, and goes first with them: skipped while the walls beside a stack
+// of gears on a plane took a 300 node-pair budget, a gear tipped over its one kept point and
+// sank 0.17 into the plane; kept, sinking contacts let another sink 0.08 and jam under a
+// wall's bottom face. Walls merely touched are not among them (running every pair with the
+// world whose body moved overran the budget 1.3x, docs/bullet-results.md); since the plane's
+// contacts are sampled per region, a floor pair costs a resting gear tens of units, not a
+// thousand.
+bool FrameScheduler::losingHold(const DeferredPair& pair) {
+  const ManifoldAlgorithm& algorithm = *pair.algorithm;
+  if (!anchored(pair) || !algorithm.holdsContacts()) return false;
+  const btScalar threshold = algorithm.breakingThreshold();
+  if (algorithm.keptDepth() > threshold) return true;
+  return !(pair.motion < threshold) && holdsUp(pair);
 }
 
 int FrameScheduler::urgency(const DeferredPair& pair) const {
   if (arriving(pair)) return 0;
-  return slipping(pair) ? 1 : 2;
+  return losingHold(pair) ? 1 : 2;
 }
 
 bool FrameScheduler::arriving(const DeferredPair& pair) const {
@@ -562,8 +569,13 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
     // and left the plane pairs that held the gears up no budget: a gear sank 0.24 in the
     // double-precision build.)
     const bool bare = anchored(pair) && !algorithm.holdsContacts() && !supported(pair);
-    if (!(stale && (neverFits || bare)) && !slipping(pair)) return false;
+    if (!(stale && (neverFits || bare)) && !losingHold(pair)) return false;
   }
+  // Under a budget too small for every pair, a box's or a plane's contacts are sampled from
+  // fewer regions of the tree (kCoarseRegionLevel): the pairs with the world that run
+  // whatever the budget (losingHold, arriving) overran it 1.12x at p99 in the
+  // double-precision mixed pile of BudgetAllPairs.
+  algorithm.setContactRegionLevel(m_binding ? kCoarseRegionLevel : kContactRegionLevel);
   PairWrappers wrappers(pair);
   btManifoldResult result(&wrappers.body0, &wrappers.body1);
   const Clock::time_point start = Clock::now();

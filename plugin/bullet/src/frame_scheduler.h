@@ -111,10 +111,10 @@ class FrameScheduler {
   static bool sweeps(const DeferredPair& pair);
   /// Whether a whole pair's body is arriving: nothing to keep, moved, near last time.
   bool arriving(const DeferredPair& pair) const;
-  /// Whether a pair with the world that holds its body up has moved past the breaking
-  /// threshold since it last ran: it runs whatever the budget.
-  static bool slipping(const DeferredPair& pair);
-  /// The order whole pairs run in: arriving (0), slipping (1), the others (2).
+  /// Whether a pair with the world is losing its hold on its body (sinking into the world,
+  /// or slipping where it holds the body up): it runs whatever the budget.
+  static bool losingHold(const DeferredPair& pair);
+  /// The order whole pairs run in: arriving (0), losing their hold (1), the others (2).
   int urgency(const DeferredPair& pair) const;
   /// Whether a pair with the world has a moving body that another pair with the world holds
   /// up (noteSupported()).

@@ -109,7 +109,7 @@ void ManifoldAlgorithm::keepLastContacts(const btCollisionObjectWrapper* body0,
                                          const btCollisionObjectWrapper* body1) {
   if (!m_manifold) return;
   btManifoldResult result(body0, body1);
-  detail::refreshContactGroups(result, contactGroups());
+  detail::refreshContactGroups(result, contactGroups(), detail::KeptPoints::Slide);
 }
 
 detail::ContactGroups ManifoldAlgorithm::contactGroups() const {
@@ -178,6 +178,22 @@ btVector3 ManifoldAlgorithm::lastNormalsOnB() const {
     }
   }
   return sum;
+}
+
+btScalar ManifoldAlgorithm::keptDepth() const {
+  btScalar deepest = 0;
+  const detail::ContactGroups groups = contactGroups();
+  for (int g = 0; g < groups.count; ++g) {
+    const btPersistentManifold& manifold = *groups.manifolds[g];
+    const btTransform& ta = manifold.getBody0()->getWorldTransform();
+    const btTransform& tb = manifold.getBody1()->getWorldTransform();
+    for (int i = 0; i < manifold.getNumContacts(); ++i) {
+      const btManifoldPoint& p = manifold.getContactPoint(i);
+      const btScalar distance = (ta(p.m_localPointA) - tb(p.m_localPointB)).dot(p.m_normalWorldOnB);
+      deepest = btMax(deepest, -distance);
+    }
+  }
+  return deepest;
 }
 
 btScalar ManifoldAlgorithm::motionSinceLastRun(const btTransform& transform0,

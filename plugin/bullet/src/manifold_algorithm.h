@@ -20,6 +20,7 @@
 #include <new>
 
 #include "adb/bullet/precision.h"
+#include "contact_selection.h"
 
 class btManifoldResult;
 
@@ -107,6 +108,10 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// pointing towards body 0); zero before its first contacts. Read on any thread before
   /// the pair writes its contacts: only the pair writes its manifold.
   btVector3 lastNormalsOnB() const;
+  /// The deepest penetration of the contacts the manifold holds, re-measured at the bodies'
+  /// current poses (0 when none penetrates, or it holds none): how far a pair that keeps its
+  /// contacts has sunk into the other body since they were made.
+  btScalar keptDepth() const;
   /// Notes that the pair's contacts were made now, for bodies posed as `body0` and `body1`:
   /// what motionSinceLastRun() measures from. The scheduler's, for mesh-mesh pairs.
   void noteContactsMade(const btCollisionObjectWrapper* body0,
@@ -137,6 +142,11 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   /// How far apart features make contacts this step: breakingThreshold() plus
   /// speculativeReach().
   btScalar contactReach() const { return m_threshold + m_speculative; }
+  /// How finely a pair of a mesh with a box or a plane samples its contacts: the tree's
+  /// regions are 2^level (detail::kContactRegionLevel; the scheduler coarsens it under a
+  /// binding budget, detail::kCoarseRegionLevel).
+  int contactRegionLevel() const { return m_regionLevel; }
+  void setContactRegionLevel(int level) { m_regionLevel = static_cast<std::uint8_t>(level); }
   /// Refreshes the pair's manifolds for the bodies' new poses (Bullet's refreshContactPoints)
   /// without colliding: what a pair the budget skipped keeps from its last step.
   void keepLastContacts(const btCollisionObjectWrapper* body0,
@@ -221,6 +231,8 @@ class ManifoldAlgorithm : public btActivatingCollisionAlgorithm {
   // Steps left in which the pair counts as landing (landing()); in the padding after
   // m_swapped.
   std::uint8_t m_landingSteps = 0;
+  // contactRegionLevel(), in the same padding.
+  std::uint8_t m_regionLevel = detail::kContactRegionLevel;
   btScalar m_threshold = 0;    // the manifold's breaking threshold as Bullet made it
   btScalar m_speculative = 0;  // speculativeReach() of this step
 };

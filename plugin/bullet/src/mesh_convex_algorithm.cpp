@@ -195,6 +195,8 @@ struct PairFrame {
   // Box: the way last step's contacts pushed the mesh out of the box, in the mesh's frame
   // (zero without contacts): boxTriangleContacts keeps to it.
   Vec3 pushHint = Vec3::Zero();
+  // Box: the tree's regions that each give their deepest contacts are 2^regionLevel.
+  int regionLevel = detail::kContactRegionLevel;
 };
 
 // PairFrame's pushHint: the last contacts' normals (ManifoldAlgorithm::lastNormalsOnB) as the
@@ -301,7 +303,7 @@ std::uint64_t closedFormContacts(const PairFrame& f, detail::ContactSelection& s
   if (local.kind == LocalConvex::Box) {
     // A box (a floor, a wall) has hundreds of triangles within reach of a resting body:
     // each region of the tree gives its deepest contacts (forEachDeepestTriangleNear).
-    visited += forEachDeepestTriangleNear(tree, local.box, f.reach, detail::kContactRegionLevel,
+    visited += forEachDeepestTriangleNear(tree, local.box, f.reach, f.regionLevel,
                                          kDepthSlack * f.reach, contactsOf);
   } else {
     visited += forEachTriangleNear(tree, local.bounds, [&](std::uint32_t t) { contactsOf(t); });
@@ -368,8 +370,9 @@ std::uint64_t MeshConvexAlgorithm::gather(const btCollisionObjectWrapper* body0,
                                           btScalar closestPoints,
                                           detail::ContactSelection& selection) const {
   selection.clear();
-  const PairFrame f = pairFrame(body0, body1, !m_swapped, candidateThreshold(closestPoints),
-                                lastNormalsOnB());
+  PairFrame f = pairFrame(body0, body1, !m_swapped, candidateThreshold(closestPoints),
+                          lastNormalsOnB());
+  f.regionLevel = contactRegionLevel();
   // A pose too far out for its relative pose to be finite offers nothing (acceptPoses has
   // refused non-finite poses already).
   if (!f.finite) return 0;

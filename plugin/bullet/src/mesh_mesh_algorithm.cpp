@@ -241,8 +241,11 @@ ContactCount MeshMeshAlgorithm::writePoints(const btCollisionObjectWrapper* body
                                             const btCollisionObjectWrapper* body1,
                                             btManifoldResult& result) {
   manifoldFor(body0, body1, &result);
+  // A cut pair's points of last step that it did not find again are kept, slid along their
+  // surface as a pair granted nothing keeps its points (keepLastContacts).
   detail::writeContactPoints(m_points, result, contactGroups(), body0->m_partId,
-                             body1->m_partId);
+                             body1->m_partId,
+                             cut() ? detail::KeptPoints::Slide : detail::KeptPoints::Drop);
   m_pointsReady = false;
   return m_pointCount;
 }

@@ -109,7 +109,7 @@ std::uint64_t MeshPlaneAlgorithm::gather(const btCollisionObjectWrapper* body0,
     return deepest;
   };
   visited += forEachDeepestTriangleNear(tree, halfSpaceBelow(n, c, tree, reach), reach,
-                                        detail::kContactRegionLevel, 0.0, contactsOf);
+                                        contactRegionLevel(), 0.0, contactsOf);
   if (speculativeReach() > 0 && std::isfinite(closest)) {
     // A fast body's candidates are its lowest vertices, hundreds at one distance for a face
     // falling flat: the selection kept the first it found, in one corner of the face, and

@@ -66,9 +66,20 @@ struct ContactGroups {
   int count = 0;
 };
 
+/// How last step's points, kept, are re-measured.
+enum class KeptPoints {
+  /// As Bullet does: dropped once they slid along the surface by the breaking threshold.
+  Drop,
+  /// Slid along the surface they touch (the static body's, else body 1's): the point on it
+  /// is moved under the other body's point, in the plane of the contact.
+  Slide,
+};
+
 /// Re-measures every group's points at the bodies' poses (Bullet's refreshContactPoints,
-/// through `out`, whose manifold it leaves on the first group).
-void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups);
+/// through `out`, whose manifold it leaves on the first group); with KeptPoints::Slide, the
+/// points slide along their surface first.
+void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups,
+                          KeptPoints kept = KeptPoints::Drop);
 
 /// Writes `points` through `out` (btManifoldResult or a SpeculativeResult) in place of what
 /// the `groups` held, in order, each with its features and the wrappers' part ids
@@ -77,9 +88,11 @@ void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups);
 /// group) takes over that point's solver state (its impulses, warm-starting the solver, and
 /// its age); one without takes it from the nearest unclaimed point within the breaking
 /// threshold, as Bullet's own matching would. Then refreshes every group for the bodies'
-/// poses and leaves `out` on the first. The stepping thread's part.
+/// poses (`kept`: how last step's points kept are re-measured) and leaves `out` on the
+/// first. The stepping thread's part.
 void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
-                        const ContactGroups& groups, int partId0, int partId1);
+                        const ContactGroups& groups, int partId0, int partId1,
+                        KeptPoints kept = KeptPoints::Drop);
 
 /// The preferred separation direction from body 0 towards body 1 for this step: against the
 /// last step's contact normals on body 1 (`lastNormalsOnB`, their sum; warm starting:
