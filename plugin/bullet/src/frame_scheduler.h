@@ -114,7 +114,11 @@ class FrameScheduler {
   /// Whether a pair with the world is losing its hold on its body (sinking into the world,
   /// or slipping where it holds the body up): it runs whatever the budget.
   static bool losingHold(const DeferredPair& pair);
-  /// The order whole pairs run in: arriving (0), losing their hold (1), the others (2).
+  /// Whether a pair with the world has a body that moved past the breaking threshold since
+  /// the pair last ran and was near it then, or never ran: it runs whatever the budget.
+  static bool approaching(const DeferredPair& pair);
+  /// The order whole pairs run in: arriving (0), losing their hold or approaching (1), the
+  /// others (2).
   int urgency(const DeferredPair& pair) const;
   /// Whether a pair with the world has a moving body that another pair with the world holds
   /// up (noteSupported()).
