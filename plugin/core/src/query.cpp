@@ -165,6 +165,10 @@ struct Traversal::Impl {
   // --- the query, fixed by reset() -------------------------------------------------------
   detail::TreeConstants a{nullptr, 0}, b{nullptr, 0};
   detail::RelativeFrame frame;
+  // The contact margin in force: QuerySettings::contactMargin, shrunk to the farthest kept
+  // witness once the witness list is full (shrinkMargin), and the box tests' slack without it.
+  double margin = 0.0;
+  double slackWithoutMargin = 0.0;
   QuerySettings settings;
   bool budgeted = false;  // a budget may cut the query (ExactDescent::Auto: deepest first)
   bool deepestFirst = false;  // exact mode descends the deepest overlap first
@@ -296,6 +300,8 @@ struct Traversal::Impl {
     frame = detail::RelativeFrame::between(ta, poseA, tb, poseB);
     // Every box test separates along unit axes: a gap larger than the margin along any of
     // them proves the nodes farther apart than the margin.
+    slackWithoutMargin = frame.slack;
+    margin = s.contactMargin;
     frame.slack += s.contactMargin;
     settings = s;
     reserveFor(ta, tb);
@@ -433,10 +439,25 @@ struct Traversal::Impl {
     // With a contact margin a full list keeps the closest pairs: the contacts that matter
     // are where the meshes meet first, not the first pairs the descent happened to find.
     if (!(settings.contactMargin > 0.0) || witnesses.empty()) return;
-    auto farthest = std::max_element(
-        witnesses.begin(), witnesses.end(),
-        [](const Witness& x, const Witness& y) { return x.distance < y.distance; });
+    const auto farther = [](const Witness& x, const Witness& y) {
+      return x.distance < y.distance;
+    };
+    auto farthest = std::max_element(witnesses.begin(), witnesses.end(), farther);
     if (w.distance < farthest->distance) *farthest = w;
+    shrinkMargin(std::max_element(witnesses.begin(), witnesses.end(), farther)->distance);
+  }
+
+  // Branch and bound on the closest pairs: once the witness list is full, no pair farther
+  // apart than its farthest witness can enter it, so the margin shrinks to that distance and
+  // the box tests prune every node pair beyond it. Why: a fast body's speculative contacts
+  // (a gear falling flat onto a floor) have hundreds of triangle pairs within the distance
+  // the bodies close in a step, and enumerating them all cost a robot arm falling into a
+  // room 190,000 node pairs in one step. Not while walking a front: its certificates were
+  // measured with the settings' margin.
+  void shrinkMargin(double farthest) {
+    if (walking || !(farthest < margin)) return;
+    margin = farthest;
+    frame.slack = slackWithoutMargin + margin;
   }
 
   // Whether the hit just found ends the query (stopAtFirstHit, or the witnesses are full),
@@ -496,7 +517,6 @@ struct Traversal::Impl {
     // thousand times trianglesIntersect's tolerance (1e-12 of the pair's extent) beyond the
     // contact margin, so the answer is the one the tests would give. Most pairs of two
     // overlapping leaves are apart.
-    const double margin = settings.contactMargin;
     const double gap = 1e-9 * (hi - lo).maxCoeff() + margin;
     bool hit = false;
     for (std::uint32_t i = 0; i < na.triangleCount(); ++i) {
