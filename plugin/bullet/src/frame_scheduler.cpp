@@ -470,6 +470,12 @@ void FrameScheduler::runOnPool(std::size_t jobs, Job& job) {
 // left (runWhole), so it goes first: run after the pairs that had contacts, it overran the
 // budget by what it cost (BudgetAllPairs' mixed pile: p99 1.09x the budget, a gear landing on
 // the plane taking 343 node pairs where 99 were left).
+bool FrameScheduler::arriving(const DeferredPair& pair) const {
+  const ManifoldAlgorithm& algorithm = *pair.algorithm;
+  return !algorithm.holdsContacts() && algorithm.lastWork() > 1 &&
+         !(pair.motion < algorithm.breakingThreshold()) && !supported(pair);
+}
+
 // A pair with the world that is losing its hold on its body: its kept contacts, re-measured
 // at this step's poses, are deeper than the breaking threshold (the body is sinking into the
 // world), or they hold the body up (holdsUp) and it has moved past the breaking threshold
@@ -477,10 +483,8 @@ void FrameScheduler::runOnPool(std::size_t jobs, Job& job) {
 // as an arriving pair does, and goes first with them: skipped while the walls beside a stack
 // of gears on a plane took a 300 node-pair budget, a gear tipped over its one kept point and
 // sank 0.17 into the plane; kept, sinking contacts let another sink 0.08 and jam under a
-// wall's bottom face. Walls merely touched are not among them (running every pair with the
-// world whose body moved overran the budget 1.3x, docs/bullet-results.md); since the plane's
-// contacts are sampled per region, a floor pair costs a resting gear tens of units, not a
-// thousand.
+// wall's bottom face. Since the plane's contacts are sampled per region, a floor pair costs a
+// resting gear tens of units, not a thousand.
 bool FrameScheduler::losingHold(const DeferredPair& pair) {
   const ManifoldAlgorithm& algorithm = *pair.algorithm;
   if (!anchored(pair) || !algorithm.holdsContacts()) return false;
@@ -506,12 +510,6 @@ bool FrameScheduler::approaching(const DeferredPair& pair) {
 int FrameScheduler::urgency(const DeferredPair& pair) const {
   if (arriving(pair)) return 0;
   return losingHold(pair) || approaching(pair) ? 1 : 2;
-}
-
-bool FrameScheduler::arriving(const DeferredPair& pair) const {
-  const ManifoldAlgorithm& algorithm = *pair.algorithm;
-  return !algorithm.holdsContacts() && algorithm.lastWork() > 1 &&
-         !(pair.motion < algorithm.breakingThreshold()) && !supported(pair);
 }
 
 void FrameScheduler::noteSupported() {
@@ -593,6 +591,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   // fewer regions of the tree (kCoarseRegionLevel): the pairs with the world that run
   // whatever the budget (losingHold, arriving) overran it 1.12x at p99 in the
   // double-precision mixed pile of BudgetAllPairs with 16.
+  // Set for this run only: a contactTest, or a step without a budget, samples 16.
   algorithm.setContactRegionLevel(m_binding ? kCoarseRegionLevel : kContactRegionLevel);
   PairWrappers wrappers(pair);
   btManifoldResult result(&wrappers.body0, &wrappers.body1);
@@ -610,6 +609,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   }
   const double micros =
       gatheredMicros + std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+  algorithm.setContactRegionLevel(kContactRegionLevel);
   algorithm.setLastMicros(micros);
   m_costs.measureWhole(work, micros);
   m_stats.nodePairs += work;

@@ -143,7 +143,8 @@ class FrameScheduler {
   std::vector<DeferredPair> m_pairs;   // mesh-mesh, refined (reused: no allocation)
   std::vector<DeferredPair> m_wholes;  // the others: run whole or not at all
   // Bodies the world holds up this step: the moving body of a pair with a static or
-  // kinematic body whose contacts push it up (holdsUp). Sorted, for supported(). Reused: no allocation.
+  // kinematic body whose contacts push it up (holdsUp). Sorted, for supported(). Reused: no
+  // allocation.
   std::vector<const btCollisionObject*> m_supported;
   const btDispatcherInfo* m_info = nullptr;  // the dispatch's, during run()
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs

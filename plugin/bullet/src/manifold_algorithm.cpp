@@ -189,7 +189,8 @@ btScalar ManifoldAlgorithm::keptDepth() const {
     const btTransform& tb = manifold.getBody1()->getWorldTransform();
     for (int i = 0; i < manifold.getNumContacts(); ++i) {
       const btManifoldPoint& p = manifold.getContactPoint(i);
-      const btScalar distance = (ta(p.m_localPointA) - tb(p.m_localPointB)).dot(p.m_normalWorldOnB);
+      const btScalar distance =
+          (ta(p.m_localPointA) - tb(p.m_localPointB)).dot(p.m_normalWorldOnB);
       deepest = btMax(deepest, -distance);
     }
   }

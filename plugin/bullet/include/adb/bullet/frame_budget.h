@@ -14,7 +14,10 @@
 // threshold. Each mesh-mesh pair is given what it needed last step, at most an even share of
 // what is left; then, while budget is left, the pairs whose contacts are least complete get
 // as much again, resumed where they stopped. Mesh-mesh queries run in rounds whose grants
-// are decided before any of them runs (FrameSettings::threads). Mesh-box contacts are sampled: each of 16 regions of the tree gives its deepest
+// are decided before any of them runs (FrameSettings::threads). Pairs with the world whose
+// skipping could cost a body (arriving at it, sinking into it, slipping where it holds the body
+// up, or approaching it) run whatever the budget, first. Mesh-box and mesh-plane contacts are
+// sampled: each of 16 regions of the tree (4 under a binding budget) gives its deepest
 // points (adb/core/box_query.h, forEachDeepestTriangleNear). A mesh-mesh pair is decided
 // when its traversal completed (exact contacts, sampled per contact region) or reached the
 // quality target (kMin node pairs above pMin, which needs the paper's best-first traversal;
