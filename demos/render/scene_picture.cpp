@@ -89,16 +89,17 @@ std::string sceneCaption(const scene::SceneWorld& world, double meanStepMillis) 
   const scene::BudgetSpec& b = world.scene().world.budget;
   char budget[64] = "";
   if (world.built().budget && b.kind == scene::BudgetSpec::Kind::Micros) {
-    std::snprintf(budget, sizeof budget, " budget %.0f us", b.micros);
+    std::snprintf(budget, sizeof budget, " budget %.3g ms", b.micros / 1000.0);
   } else if (world.built().budget) {
     std::snprintf(budget, sizeof budget, " budget %llu pairs",
                   static_cast<unsigned long long>(b.nodePairs));
   }
   char text[200];
   // The mean over the run so far, as the comparison table gives it: the last step alone of
-  // a pile asleep says 0.0 beside a table that says 39.7.
-  std::snprintf(text, sizeof text, "%s%s  step %d  %.2f s  %.2f ms/step mean",
-                toString(world.backend()), budget, r.step, r.time, meanStepMillis);
+  // a pile asleep says 0.0 beside a table that says 39.7. No seconds: with them adb's caption
+  // was too long for the large font of the others.
+  std::snprintf(text, sizeof text, "%s%s  step %d  %.2f ms/step mean",
+                toString(world.backend()), budget, r.step, meanStepMillis);
   return text;
 }
 

@@ -4,8 +4,10 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -102,6 +104,18 @@ inline void addConcavePile(World& w, int bodies, int perRow) {
     btRigidBody* b = w.add(i % 2 ? knot : torus, 1, at);
     b->setActivationState(DISABLE_DEACTIVATION);
   }
+}
+
+/// The lowest vertex (world y) of a mesh body.
+inline double lowestVertex(const btRigidBody& body) {
+  const auto& shape = static_cast<const MeshShape&>(*body.getCollisionShape());
+  const btTransform& t = body.getWorldTransform();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : shape.data().mesh.vertices()) {
+    const btVector3 w = t * btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
+    lowest = std::min(lowest, static_cast<double>(w.y()));
+  }
+  return lowest;
 }
 
 /// FNV-1a over the bytes of every body's transform and velocities.

@@ -221,18 +221,6 @@ TEST(FrameBudget, SmallNodePairBudgetDegradesGracefully) {
   EXPECT_GT(small.plausibleContacts, 0u) << "cut pairs give plausible contacts";
 }
 
-// The lowest vertex of a moving mesh body in the world.
-double lowestVertex(const btRigidBody& body) {
-  const auto& shape = static_cast<const MeshShape&>(*body.getCollisionShape());
-  const btTransform& t = body.getWorldTransform();
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const Vec3& v : shape.data().mesh.vertices()) {
-    const btVector3 w = t * btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
-    lowest = std::min(lowest, static_cast<double>(w.y()));
-  }
-  return lowest;
-}
-
 struct GroundDepth {
   double deepest = std::numeric_limits<double>::infinity();  // lowest vertex y, all steps
   std::uint32_t cut = 0;                                      // pairs cut, all steps
@@ -255,7 +243,7 @@ GroundDepth pileUnderBudget(std::uint64_t budget) {
     d.cut += w.adbDispatcher->lastFrameStats().cutPairs;
     if (step < kPushedOut) continue;
     for (const auto& b : w.bodies) {
-      if (b->getInvMass() > 0) d.deepest = std::min(d.deepest, lowestVertex(*b));
+      if (b->getInvMass() > 0) d.deepest = std::min(d.deepest, test::lowestVertex(*b));
     }
   }
   return d;

@@ -6,9 +6,6 @@
 
 #include <btBulletDynamicsCommon.h>
 
-#include <algorithm>
-#include <limits>
-
 #include "adb/support/mesh_generators.h"
 #include "bullet_world.h"
 
@@ -16,19 +13,8 @@ namespace adb {
 namespace {
 
 using test::flatTorus;
+using test::lowestVertex;
 using test::World;
-
-// The lowest point of a mesh body's vertices in the world.
-double lowestVertex(const btRigidBody& body) {
-  const auto& shape = static_cast<const MeshShape&>(*body.getCollisionShape());
-  const btTransform& t = body.getWorldTransform();
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const Vec3& v : shape.data().mesh.vertices()) {
-    const btVector3 w = t * btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z()));
-    lowest = std::min(lowest, static_cast<double>(w.y()));
-  }
-  return lowest;
-}
 
 // The contact points between two bodies, over all their manifolds.
 int pointsBetween(btDispatcher& dispatcher, const btCollisionObject* a,

@@ -98,11 +98,10 @@ TEST(TriangleDistance, RandomSeparatedPairsAreCertifiedOptimal) {
   EXPECT_GT(checked, 10000);  // most random pairs at these offsets are apart
 }
 
-// Every triangle pair within `margin` of each other (crossing or not), by brute force.
-std::set<std::pair<std::uint32_t, std::uint32_t>> pairsWithin(const AdbTree& tree,
-                                                              const Pose& pa, const Pose& pb,
-                                                              double margin) {
-  std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+// f(i, j, distance) for every triangle pair of two posed copies of `tree` (distance 0 when
+// they cross), by brute force.
+template <class F>
+void forEveryTrianglePair(const AdbTree& tree, const Pose& pa, const Pose& pb, F&& f) {
   const auto& v = tree.localVertices();
   const auto& t = tree.triangles();
   const auto world = [&](const Pose& p, std::uint32_t tri, int k) {
@@ -112,12 +111,21 @@ std::set<std::pair<std::uint32_t, std::uint32_t>> pairsWithin(const AdbTree& tre
     for (std::uint32_t j = 0; j < t.size(); ++j) {
       const Vec3 a[3] = {world(pa, i, 0), world(pa, i, 1), world(pa, i, 2)};
       const Vec3 b[3] = {world(pb, j, 0), world(pb, j, 1), world(pb, j, 2)};
-      if (trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2]) ||
-          triangleDistance(a[0], a[1], a[2], b[0], b[1], b[2]).distance <= margin) {
-        out.insert({i, j});
-      }
+      f(i, j, trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2])
+                  ? 0.0
+                  : triangleDistance(a[0], a[1], a[2], b[0], b[1], b[2]).distance);
     }
   }
+}
+
+// Every triangle pair within `margin` of each other (crossing or not), by brute force.
+std::set<std::pair<std::uint32_t, std::uint32_t>> pairsWithin(const AdbTree& tree,
+                                                              const Pose& pa, const Pose& pb,
+                                                              double margin) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+  forEveryTrianglePair(tree, pa, pb, [&](std::uint32_t i, std::uint32_t j, double distance) {
+    if (distance <= margin) out.insert({i, j});
+  });
   return out;
 }
 
@@ -159,20 +167,9 @@ TEST(ContactMargin, FindsExactlyThePairsWithinTheMargin) {
 // Every triangle pair's distance (0 when they cross), by brute force, sorted.
 std::vector<double> pairDistances(const AdbTree& tree, const Pose& pa, const Pose& pb) {
   std::vector<double> out;
-  const auto& v = tree.localVertices();
-  const auto& t = tree.triangles();
-  const auto world = [&](const Pose& p, std::uint32_t tri, int k) {
-    return p.apply(v[t[tri][k]] + tree.origin());
-  };
-  for (std::uint32_t i = 0; i < t.size(); ++i) {
-    for (std::uint32_t j = 0; j < t.size(); ++j) {
-      const Vec3 a[3] = {world(pa, i, 0), world(pa, i, 1), world(pa, i, 2)};
-      const Vec3 b[3] = {world(pb, j, 0), world(pb, j, 1), world(pb, j, 2)};
-      out.push_back(trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2])
-                        ? 0.0
-                        : triangleDistance(a[0], a[1], a[2], b[0], b[1], b[2]).distance);
-    }
-  }
+  forEveryTrianglePair(tree, pa, pb, [&](std::uint32_t, std::uint32_t, double distance) {
+    out.push_back(distance);
+  });
   std::sort(out.begin(), out.end());
   return out;
 }
