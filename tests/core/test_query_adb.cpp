@@ -425,19 +425,26 @@ TEST(ColdStart, TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond) {
   const TriangleMesh mesh = gen::makeModel("knot", 20000);
   const AdbTree tree(mesh);
   const Pose at{Mat3::Identity(), Vec3(0.3, 0, 0)};
-  QuerySettings settings = test::adbSettings(0.99, 10);
-  settings.budgetMicros = 50;
-  QueryScratch first, second;
-  const QueryResult cold = collide(tree, Pose{}, tree, at, settings, first);
-  const QueryResult warm = collide(tree, Pose{}, tree, at, settings, second);
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   // Under the sanitizers a process's first touches of memory and code are several times
   // slower again (measured under ASan: 65 node pairs in 93 us against 193; 1 without the
-  // tables built at load), as for the time budgets of FrameBudget.
+  // tables built at load), as for the time budgets of FrameBudget. The first expansion alone
+  // (the trees' first touch of shadow memory: 70 to 700 us under ASan) outlasted a 50 us
+  // budget in 6 of 10 runs, and a 150 us one in 4 of 8 (1 node pair against the second's 73,
+  // which stops at the quality target), on the query code of a3ec8ef as on this one: under
+  // the sanitizers the budget is 500 us (0 of 8 failed), what the release build's 50 us test
+  // asks of the tables without the shadow memory's first touch.
   constexpr std::uint64_t kSlack = 3;
+  constexpr double kBudgetMicros = 50.0 * 10;
 #else
   constexpr std::uint64_t kSlack = 1;
+  constexpr double kBudgetMicros = 50.0;
 #endif
+  QuerySettings settings = test::adbSettings(0.99, 10);
+  settings.budgetMicros = kBudgetMicros;
+  QueryScratch first, second;
+  const QueryResult cold = collide(tree, Pose{}, tree, at, settings, first);
+  const QueryResult warm = collide(tree, Pose{}, tree, at, settings, second);
   EXPECT_GE(2 * kSlack * cold.nodePairs, warm.nodePairs) << "cold " << 1e6 * cold.seconds << " us";
   EXPECT_LT(1e6 * cold.seconds, 10.0 * static_cast<double>(kSlack) * settings.budgetMicros);
 }
