@@ -99,3 +99,97 @@ TEST(ContactTrace, AFolderThatCannotBeWrittenIsNamed) {
 
 }  // namespace
 }  // namespace adb::scene
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+#include "adb/bullet/dispatcher.h"
+#include <limits>
+namespace adb::scene {
+namespace {
+TEST(Experiment, GalleryUnderBudget) {
+  Scene scene;
+  if (std::getenv("XPILE")) {
+    PileSpec spec; spec.bodies = std::getenv("XBODIES") ? std::atoi(std::getenv("XBODIES")) : 50; spec.trianglesPerBody = std::getenv("XTRI") ? std::atoi(std::getenv("XTRI")) : 3000; spec.model = std::getenv("XPILE"); spec.seed = 1;
+    spec.floor = std::getenv("XFLOOR") && std::string(std::getenv("XFLOOR")) == "box" ? PileSpec::Floor::Box : PileSpec::Floor::Mesh;
+    scene = makePileScene(spec);
+  } else {
+    scene = loadScene("/work/main/demos/scenes/pile.json");
+  }
+  scene.world.budget.kind = BudgetSpec::Kind::NodePairs;
+  scene.world.budget.nodePairs = std::getenv("XB") ? std::strtoull(std::getenv("XB"), nullptr, 10) : 8496;
+  const int steps = std::getenv("XS") ? std::atoi(std::getenv("XS")) : 1200;
+  SceneWorld world(scene, Backend::Adb);
+  btDiscreteDynamicsWorld* w = world.dynamicsWorld();
+  const int sw = std::getenv("XSWITCH") ? std::atoi(std::getenv("XSWITCH")) : -1;
+  if (sw >= 0) {
+    FrameSettings none = static_cast<Dispatcher*>(w->getDispatcher())->frameSettings();
+    none.budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
+    none.budgetMicros = std::numeric_limits<double>::infinity();
+    static_cast<Dispatcher*>(w->getDispatcher())->setFrameSettings(none);
+  }
+  for (int i = 0; i < steps; ++i) {
+    if (i == sw) {
+      FrameSettings zero = static_cast<Dispatcher*>(w->getDispatcher())->frameSettings();
+      zero.budgetNodePairs = std::getenv("XZ") ? std::strtoull(std::getenv("XZ"), nullptr, 10) : 0;
+      if (std::getenv("XUS")) { zero.budgetNodePairs = std::numeric_limits<std::uint64_t>::max(); zero.budgetMicros = std::atof(std::getenv("XUS")); }
+      static_cast<Dispatcher*>(w->getDispatcher())->setFrameSettings(zero);
+    }
+    if (std::getenv("XLIFT") && i == std::atoi(std::getenv("XLIFT"))) {
+      FrameSettings none = static_cast<Dispatcher*>(w->getDispatcher())->frameSettings();
+      none.budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
+      none.budgetMicros = std::numeric_limits<double>::infinity();
+      static_cast<Dispatcher*>(w->getDispatcher())->setFrameSettings(none);
+    }
+    world.step();
+    if (std::getenv("XWHERE") && i % 30 == 0) {
+      for (std::size_t bb = 0; bb < world.bodyCount(); ++bb) {
+        if (!world.isDynamic(bb)) continue;
+        const Vec3 c = world.bodyPose(bb).translation;
+        if (c.y() < 0 || std::abs(c.x()) > 2.5 || std::abs(c.z()) > 2.5) std::printf("OUT %d body %zu at %.3f %.3f %.3f\n", i, bb, c.x(), c.y(), c.z());
+      }
+    }
+    if (i % 30 == 0 || (std::getenv("XALL") && i > sw && i < sw + 60)) { const StepRecord& r = world.last(); std::printf("S %d lost %d asleep %d kinetic %.4f pairs %u cut %u reused %u kept %u np %llu\n", i, r.lost, r.asleep, r.kinetic, r.frame.pairs, r.frame.cutPairs, r.frame.reusedPairs, r.frame.otherKeptPairs, (unsigned long long)r.frame.nodePairs); }
+    if (std::getenv("XLOW") && i > sw && i < sw + (std::getenv("XLEN") ? std::atoi(std::getenv("XLEN")) : 80)) {
+      auto& objs = w->getCollisionObjectArray();
+      for (int k = 0; k < objs.size(); ++k) {
+        btRigidBody* b = btRigidBody::upcast(objs[k]);
+        if (!b || b->getInvMass() == 0) continue;
+        const btVector3 o = b->getWorldTransform().getOrigin();
+        if (o.y() > (std::getenv("XLOWY") ? std::atof(std::getenv("XLOWY")) : 0.05) && std::abs(o.x()) < 2.4 && std::abs(o.z()) < 2.4) continue;
+        std::printf("low %d obj %d at %.3f %.3f %.3f v %.3f %.3f %.3f |", i, k, o.x(), o.y(), o.z(), b->getLinearVelocity().x(), b->getLinearVelocity().y(), b->getLinearVelocity().z());
+        btDispatcher* d = w->getDispatcher();
+        for (int m = 0; m < d->getNumManifolds(); ++m) {
+          const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+          if (pm->getBody0() != b && pm->getBody1() != b) continue;
+          const btCollisionObject* o = pm->getBody0() == b ? pm->getBody1() : pm->getBody0();
+          std::printf(" [o%d:%d", o->getWorldArrayIndex(), pm->getNumContacts());
+          for (int c = 0; c < pm->getNumContacts(); ++c) std::printf(" %.3f", pm->getContactPoint(c).getDistance());
+          std::printf("]");
+        }
+        std::printf("\n");
+      }
+    }
+    if (i < steps - 60 || i % 10 != 0) continue;
+    auto& objs = w->getCollisionObjectArray();
+    for (int k = 0; k < objs.size(); ++k) {
+      btRigidBody* b = btRigidBody::upcast(objs[k]);
+      if (!b || b->getInvMass() == 0) continue;
+      const double spin = b->getAngularVelocity().length(), speed = b->getLinearVelocity().length();
+      if (spin < 0.6 && speed < 0.3) continue;
+      std::printf("step %d obj %d shape %s y %.3f v %.3f w %.3f state %d |", i, k, b->getCollisionShape()->getName(), b->getWorldTransform().getOrigin().y(), speed, spin, b->getActivationState());
+      btDispatcher* d = w->getDispatcher();
+      for (int m = 0; m < d->getNumManifolds(); ++m) {
+        const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+        if (pm->getBody0() != b && pm->getBody1() != b) continue;
+        if (pm->getNumContacts() == 0) continue;
+        const btCollisionObject* o = pm->getBody0() == b ? pm->getBody1() : pm->getBody0();
+        std::printf(" [o%d:%d", o->getWorldArrayIndex(), pm->getNumContacts());
+        for (int c = 0; c < pm->getNumContacts(); ++c) std::printf(" %.3f/%d", pm->getContactPoint(c).getDistance(), pm->getContactPoint(c).m_index0 >= 0 && pm->getContactPoint(c).m_index1 >= 0);
+        std::printf("]");
+      }
+      std::printf("\n");
+    }
+  }
+}
+}  // namespace
+}  // namespace adb::scene
