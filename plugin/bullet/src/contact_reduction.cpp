@@ -1,8 +1,6 @@
 // reduceContacts: the deepest point, the points that were there last step, the widest support.
 #include "contact_reduction.h"
 
-#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
-
 #include <algorithm>
 #include <limits>
 #include <utility>
@@ -45,8 +43,6 @@ int exactPointsNotFoundAgain(const ContactPoints& points, int candidates,
   deepest = 0;
   for (int g = 0; g < groups.count; ++g) {
     const btPersistentManifold& previous = *groups.manifolds[g];
-    const btTransform& ta = previous.getBody0()->getWorldTransform();
-    const btTransform& tb = previous.getBody1()->getWorldTransform();
     for (int k = 0; k < previous.getNumContacts(); ++k) {
       const btManifoldPoint& old = previous.getContactPoint(k);
       if (old.m_index0 < 0 || old.m_index1 < 0) continue;
@@ -57,9 +53,7 @@ int exactPointsNotFoundAgain(const ContactPoints& points, int candidates,
       }
       if (found) continue;
       ++count;
-      const btScalar distance =
-          (ta(old.m_localPointA) - tb(old.m_localPointB)).dot(old.m_normalWorldOnB);
-      deepest = btMax(deepest, -distance);
+      deepest = btMax(deepest, -separationNow(previous, old));
     }
   }
   return count;

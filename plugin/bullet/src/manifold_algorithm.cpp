@@ -185,13 +185,8 @@ btScalar ManifoldAlgorithm::keptDepth() const {
   const detail::ContactGroups groups = contactGroups();
   for (int g = 0; g < groups.count; ++g) {
     const btPersistentManifold& manifold = *groups.manifolds[g];
-    const btTransform& ta = manifold.getBody0()->getWorldTransform();
-    const btTransform& tb = manifold.getBody1()->getWorldTransform();
     for (int i = 0; i < manifold.getNumContacts(); ++i) {
-      const btManifoldPoint& p = manifold.getContactPoint(i);
-      const btScalar distance =
-          (ta(p.m_localPointA) - tb(p.m_localPointB)).dot(p.m_normalWorldOnB);
-      deepest = btMax(deepest, -distance);
+      deepest = btMax(deepest, -detail::separationNow(manifold, manifold.getContactPoint(i)));
     }
   }
   return deepest;

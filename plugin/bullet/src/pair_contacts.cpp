@@ -312,6 +312,12 @@ void slideAlongSurface(btPersistentManifold& manifold) {
 
 }  // namespace
 
+btScalar separationNow(const btPersistentManifold& manifold, const btManifoldPoint& point) {
+  const btTransform& ta = manifold.getBody0()->getWorldTransform();
+  const btTransform& tb = manifold.getBody1()->getWorldTransform();
+  return (ta(point.m_localPointA) - tb(point.m_localPointB)).dot(point.m_normalWorldOnB);
+}
+
 void refreshContactGroups(btManifoldResult& out, const ContactGroups& groups, KeptPoints kept) {
   for (int g = groups.count - 1; g >= 0; --g) {
     if (kept == KeptPoints::Slide) slideAlongSurface(*groups.manifolds[g]);

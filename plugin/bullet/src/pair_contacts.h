@@ -66,6 +66,10 @@ struct ContactGroups {
   int count = 0;
 };
 
+/// A manifold point's separation re-measured at its bodies' current poses (what Bullet's
+/// refresh would give it; < 0 penetrating).
+btScalar separationNow(const btPersistentManifold& manifold, const btManifoldPoint& point);
+
 /// How last step's points, kept, are re-measured.
 enum class KeptPoints {
   /// As Bullet does: dropped once they slid along the surface by the breaking threshold.
