@@ -20,15 +20,16 @@ bool deeper(const PendingContact& x, const PendingContact& y) {
   return x.featureB < y.featureB;
 }
 
-// Exact points before plausible ones (a plausible point guesses where the surfaces may
-// meet; an exact one is where they do), each kind deepest first.
 // How many breaking thresholds deeper than every kept point this step's deepest exact point
 // must be for a cut pair to make room for this step's points (reduceContacts). Measured on the
-// 17 scenes at 1/4, 1/8 and 1/16 of the need (docs/bullet-results.md): at 1 the new points
-// churned and 9 fewer runs fell asleep; at 4 the runs were as before but for the mesh-bin
-// gears, which lost 0 and 2 bodies at 1/8 and 1/16 instead of 3 and 5.
+// 17 scenes at 1/4, 1/8 and 1/16 of the need (docs/bullet-results.md, "Floors that hold under
+// any budget", with the commands): at 1 the new points churned and 9 fewer runs fell asleep;
+// at 4 the runs were as before but for the mesh-bin gears, which lost 0 and 2 bodies at 1/8
+// and 1/16 instead of 3 and 5.
 constexpr btScalar kSinking = 4;
 
+// Exact points before plausible ones (a plausible point guesses where the surfaces may
+// meet; an exact one is where they do), each kind deepest first.
 bool exactThenDeeper(const PendingContact& x, const PendingContact& y) {
   if (x.softened != y.softened) return !x.softened;
   return deeper(x, y);

@@ -32,6 +32,10 @@ struct DeferredPair {
   // A whole pair: how far its mesh moved against the other body since it last ran (its
   // kept contacts' error), infinite if it never ran. The most moved run first.
   btScalar motion = 0;
+  // A whole pair: FrameScheduler::urgency(), worked out once per step before the pairs are
+  // sorted (it re-measures kept contacts): 0 arriving, 1 losing its hold or approaching (both
+  // run whatever the budget), 2 the others.
+  std::uint8_t urgency = 2;
   // Scheduling state of this step.
   std::uint64_t grant = 0;     // node pairs granted this step (all its queries)
   double confidence = 0.0;     // see FrameStats::meanConfidence

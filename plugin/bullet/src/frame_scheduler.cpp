@@ -153,16 +153,16 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
   m_stats.otherPairs = static_cast<std::uint32_t>(m_wholes.size());
   // Whole pairs run in the order of how far their bodies moved since they last ran (never
   // run first): a skipped pair keeps its last contacts, true only while its bodies barely
-  // move. Arriving pairs (arriving()) go before all: they run whatever the budget anyway,
-  // and run last they overran it. Ties (resting bodies) keep the dispatch's order, so that
-  // node-pair budgets stay reproducible (std::sort: stable_sort would allocate).
+  // move. Pairs that run whatever the budget go before all (urgency): run last they overran
+  // it. Ties (resting bodies) keep the dispatch's order, so that node-pair budgets stay
+  // reproducible (std::sort: stable_sort would allocate).
   for (DeferredPair& pair : m_wholes) {
     pair.motion = pair.algorithm->motionSinceLastRun(pair.transform0, pair.transform1);
   }
   noteSupported();
-  std::sort(m_wholes.begin(), m_wholes.end(), [this](const DeferredPair& x, const DeferredPair& y) {
-    const int nx = urgency(x), ny = urgency(y);
-    if (nx != ny) return nx < ny;
+  for (DeferredPair& pair : m_wholes) pair.urgency = urgency(pair);
+  std::sort(m_wholes.begin(), m_wholes.end(), [](const DeferredPair& x, const DeferredPair& y) {
+    if (x.urgency != y.urgency) return x.urgency < y.urgency;
     if (x.motion != y.motion) return x.motion > y.motion;
     const std::uint64_t rx = x.algorithm->lastRun(), ry = y.algorithm->lastRun();
     return rx != ry ? rx < ry : x.sequence < y.sequence;
@@ -507,9 +507,9 @@ bool FrameScheduler::approaching(const DeferredPair& pair) {
   return algorithm.lastRun() == 0 || algorithm.lastWork() > 1;
 }
 
-int FrameScheduler::urgency(const DeferredPair& pair) const {
-  if (arriving(pair)) return 0;
-  return losingHold(pair) || approaching(pair) ? 1 : 2;
+std::uint8_t FrameScheduler::urgency(const DeferredPair& pair) const {
+  if (arriving(pair)) return kArriving;
+  return losingHold(pair) || approaching(pair) ? kMustRun : kInTurn;
 }
 
 void FrameScheduler::noteSupported() {
@@ -585,7 +585,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
     // keeps its p99 within 1.05x of the budget in both precisions (docs/bullet-results.md,
     // "Budgets that never take away a floor").
     const bool bare = anchored(pair) && !algorithm.holdsContacts() && !supported(pair);
-    if (!(stale && (neverFits || bare)) && !losingHold(pair) && !approaching(pair)) return false;
+    if (!(stale && (neverFits || bare)) && pair.urgency > kMustRun) return false;
   }
   // Under a budget too small for every pair, a box's or a plane's contacts are sampled from
   // fewer regions of the tree (kCoarseRegionLevel): the pairs with the world that run

@@ -117,9 +117,10 @@ class FrameScheduler {
   /// Whether a pair with the world has a body that moved past the breaking threshold since
   /// the pair last ran and was near it then, or never ran: it runs whatever the budget.
   static bool approaching(const DeferredPair& pair);
-  /// The order whole pairs run in: arriving (0), losing their hold or approaching (1), the
-  /// others (2).
-  int urgency(const DeferredPair& pair) const;
+  /// The order whole pairs run in (DeferredPair::urgency): arriving, then losing their hold
+  /// or approaching (both run whatever the budget), then the others.
+  static constexpr std::uint8_t kArriving = 0, kMustRun = 1, kInTurn = 2;
+  std::uint8_t urgency(const DeferredPair& pair) const;
   /// Whether a pair with the world has a moving body that another pair with the world holds
   /// up (noteSupported()).
   bool supported(const DeferredPair& pair) const;
