@@ -26,6 +26,10 @@ Evidence randomEvidence(std::mt19937_64& rng) {
   e.openPairs = static_cast<std::uint32_t>(std::exp(logSum(rng) + 4.0));
   e.collisionPairs = static_cast<std::uint32_t>(unit(rng) * 20.0);
   e.expectedCells = std::exp(logSum(rng));
+  e.blindPairs = static_cast<std::uint32_t>(std::exp(logSum(rng) + 2.0));
+  e.blindUnion = e.blindPairs > 0 ? unit(rng) : 0.0;
+  e.rootFill = unit(rng);
+  e.nodePairs = static_cast<std::uint64_t>(std::exp(logSum(rng) + 6.0));
   return e;
 }
 
@@ -38,15 +42,18 @@ TEST(CollisionEstimate, AnyEvidenceGivesAProbability) {
   for (double x : {0.0, 1.0, -1.0, 2.0, kInf, -kInf, kNaN, 1e308, -1e308}) {
     Evidence e;
     e.frontierUnion = e.frontierDoubt = e.prunedDoubt = e.bestOpen = e.expectedCells = x;
-    e.openPairs = e.collisionPairs = 0xFFFFFFFFu;
+    e.blindUnion = e.rootFill = x;
+    e.openPairs = e.collisionPairs = e.blindPairs = 0xFFFFFFFFu;
+    e.nodePairs = ~std::uint64_t{0};
     const double p = collisionProbability(e);
     EXPECT_TRUE(p >= 0.0 && p <= 1.0) << "evidence " << x << " gave " << p;
     for (double f : estimateFeatures(e)) EXPECT_TRUE(std::isfinite(f)) << "evidence " << x;
   }
 }
 
-// More evidence for a collision (a larger union, doubt, pruned doubt, best open bound, or more
-// accepted pairs) never lowers the estimate: with the fitted weights, and with any weights
+// More evidence for a collision (a larger union, doubt, pruned doubt, best open bound, more
+// accepted pairs, a larger union of the blind pairs' keys or a fuller overlap of the roots)
+// never lowers the estimate: with the fitted weights, and with any weights
 // whose evidence terms are >= 0 (what the fit guarantees).
 TEST(CollisionEstimate, MoreEvidenceNeverLowersTheEstimate) {
   std::mt19937_64 rng(11);
@@ -78,6 +85,12 @@ TEST(CollisionEstimate, MoreEvidenceNeverLowersTheEstimate) {
       EXPECT_GE(p(more), p0);
       more = base;
       more.expectedCells *= 2.0;
+      EXPECT_GE(p(more), p0);
+      more = base;
+      more.blindUnion = std::min(1.0, base.blindUnion + 0.1);
+      EXPECT_GE(p(more), p0);
+      more = base;
+      more.rootFill = std::min(1.0, base.rootFill + 0.1);
       EXPECT_GE(p(more), p0);
     }
   }
@@ -138,6 +151,42 @@ TEST(CollisionEstimate, WeightsTurnFeaturesIntoALogisticModel) {
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 0, 1, 0, 0, 0, 0}), 1.0 / 3.0, 1e-9);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, 1e6, 0, 0, 0, 0}), 1.0, 1e-12);
   EXPECT_NEAR(collisionProbability(e, EstimateWeights{0, -1e6, 0, 0, 0, 0}), 0.0, 1e-12);
+  // What the cell model is blind to (issue 43): the blind pairs' union and count, the roots'
+  // fill, the work done.
+  Evidence blind;
+  blind.frontierDoubt = 1.0 - 1e-3;
+  blind.blindUnion = 0.75;
+  blind.blindPairs = 8;  // log 9
+  blind.rootFill = 0.5;
+  blind.nodePairs = 2;   // log 3
+  const auto only = [](int i, double w) {
+    EstimateWeights weights{};
+    weights[i] = w;
+    return weights;
+  };
+  EXPECT_NEAR(collisionProbability(blind, only(8, 4.0 * std::log(3.0) / 3.0)), 0.75, 1e-9);
+  EXPECT_NEAR(collisionProbability(blind, only(9, 1.0)), 0.9, 1e-9);
+  EXPECT_NEAR(collisionProbability(blind, only(10, 2.0 * std::log(3.0))), 0.75, 1e-9);
+  EXPECT_NEAR(collisionProbability(blind, only(11, 1.0)), 0.75, 1e-9);
+}
+
+// The budget model's recalibration: piecewise linear through its knots, held beyond them,
+// non-decreasing, and the identity without knots.
+TEST(CollisionEstimate, TheMonotoneMapInterpolatesItsKnots) {
+  const double x[] = {0.1, 0.5, 0.9};
+  const double y[] = {0.2, 0.4, 0.95};
+  EXPECT_DOUBLE_EQ(monotoneMap(0.0, x, y, 3), 0.2);
+  EXPECT_DOUBLE_EQ(monotoneMap(0.1, x, y, 3), 0.2);
+  EXPECT_NEAR(monotoneMap(0.3, x, y, 3), 0.3, 1e-12);
+  EXPECT_NEAR(monotoneMap(0.7, x, y, 3), 0.675, 1e-12);
+  EXPECT_DOUBLE_EQ(monotoneMap(1.0, x, y, 3), 0.95);
+  EXPECT_DOUBLE_EQ(monotoneMap(0.37, x, y, 0), 0.37);
+  double last = 0.0;
+  for (double p = 0.0; p <= 1.0; p += 0.001) {
+    const double m = monotoneMap(p, x, y, 3);
+    EXPECT_GE(m, last);
+    last = m;
+  }
 }
 
 }  // namespace

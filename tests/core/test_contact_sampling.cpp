@@ -288,12 +288,19 @@ TEST_F(OverlappingTori, ACutExactQueryEstimatesWhatItLeft) {
       continue;
     }
     ASSERT_EQ(r.stop, StopReason::WorkBudget);
-    // The evidence the open pairs give (collision_estimate.h), rebuilt here.
-    Evidence evidence;
+    // The evidence the open pairs give (collision_estimate.h), rebuilt here from them; what
+    // they do not carry (the blind pairs' keys, the fills, the work done) from a Traversal
+    // stepped the same way.
+    Traversal same(tree, p.a, tree, p.b, s);
+    same.step(StepBudget{s.budgetNodePairs});
+    Evidence evidence = same.evidence();
+    const Evidence fromTraversal = evidence;
+    evidence.frontierDoubt = evidence.bestOpen = evidence.expectedCells = 0.0;
     double miss = 1.0;
     for (const OpenPair& o : scratch.openPairs()) {
       EXPECT_TRUE(o.p >= 0.0f && o.p <= 1.0f) << o.p;
-      EXPECT_TRUE(o.upper >= o.p && o.upper <= 1.0f) << o.p << " " << o.upper;
+      EXPECT_TRUE(o.upper >= 0.0f && o.upper <= 1.0f) << o.upper;
+      EXPECT_TRUE(o.fill >= 0.0f && o.fill <= 1.0f) << o.fill;
       evidence.frontierDoubt += o.upper;
       evidence.bestOpen = std::max(evidence.bestOpen, static_cast<double>(o.p));
       evidence.expectedCells += o.expected;
@@ -301,6 +308,9 @@ TEST_F(OverlappingTori, ACutExactQueryEstimatesWhatItLeft) {
     }
     evidence.frontierUnion = 1.0 - miss;
     evidence.openPairs = static_cast<std::uint32_t>(scratch.openPairs().size());
+    EXPECT_NEAR(evidence.frontierDoubt, fromTraversal.frontierDoubt, 1e-6);
+    EXPECT_NEAR(evidence.frontierUnion, fromTraversal.frontierUnion, 1e-9);
+    EXPECT_EQ(evidence.openPairs, fromTraversal.openPairs);
     withOpen += scratch.openPairs().empty() ? 0 : 1;
     EXPECT_TRUE(r.confidence >= 0.0 && r.confidence <= 1.0);
     if (r.collides) {

@@ -130,21 +130,30 @@ struct Calibration {
   double ece = 0.0;
 };
 
-Calibration calibrate(const std::string& model, std::uint64_t budget) {
-  const TriangleMesh mesh = gen::makeModel(model, 5000);
-  const AdbTree tree(mesh);
+// How the second body of a calibration's queries is placed: Zachmann's distances, or anywhere
+// inside the first's box (a robot in a room).
+enum class Placement { Distances, Inside };
+
+// Mesh A against mesh B under `budget` node pairs at the defaults, 17 x `perStep` poses.
+Calibration calibrate(const TriangleMesh& meshA, const TriangleMesh& meshB, Placement placement,
+                      std::uint64_t budget, int perStep = 20) {
+  const AdbTree treeA(meshA), treeB(meshB);
   QueryScratch scratch;
   std::mt19937_64 rng(test::kSeed);
   Calibration c;
   double conf[10] = {}, right[10] = {};
   for (int step = 0; step <= 16; ++step) {
-    for (int i = 0; i < 20; ++i) {
-      const PosePair p = benchmarkPoses(mesh.bounds(), 0.4 + 0.1 * step, rng);
-      const QueryResult truth = collide(tree, p.a, tree, p.b, test::exactSettings(), scratch);
+    for (int i = 0; i < perStep; ++i) {
+      const PosePair p =
+          placement == Placement::Inside
+              ? insidePoses(meshA.bounds(), meshB.bounds(), rng)
+              : benchmarkPoses(meshA.bounds(), meshB.bounds(), 0.4 + 0.1 * step, rng);
+      const QueryResult truth =
+          collide(treeA, p.a, treeB, p.b, test::exactSettings(), scratch);
       if (!truth.collides && truth.nodePairs <= 1) continue;  // root boxes apart: not counted
       QuerySettings s = test::adbSettings();
       s.budgetNodePairs = budget;
-      const QueryResult r = collide(tree, p.a, tree, p.b, s, scratch);
+      const QueryResult r = collide(treeA, p.a, treeB, p.b, s, scratch);
       const bool wrong = r.collides != truth.collides;
       ++c.answers;
       c.colliding += truth.collides ? 1 : 0;
@@ -161,6 +170,11 @@ Calibration calibrate(const std::string& model, std::uint64_t budget) {
   for (int b = 0; b < 10; ++b) c.ece += std::abs(right[b] - conf[b]);
   c.ece /= std::max(1, c.answers);
   return c;
+}
+
+Calibration calibrate(const std::string& model, std::uint64_t budget) {
+  const TriangleMesh mesh = gen::makeModel(model, 5000);
+  return calibrate(mesh, mesh, Placement::Distances, budget);
 }
 
 TEST(AdbConfidence, ConfidentAnswersAreRightAtAboutTheClaimedRate) {
@@ -188,6 +202,38 @@ TEST(AdbConfidence, CutAnswersFollowTheEstimateAndAreCalibrated) {
       const int trivial = c.answers - c.colliding;  // "collision" whenever the roots overlap
       EXPECT_LT(c.wrong, trivial) << model << " budget " << budget;
       EXPECT_LT(c.wrong, c.answers / 4) << model << " budget " << budget;
+    }
+  }
+}
+
+// Issue 43: a confidence that tells the truth under any budget, on pairs of different models
+// that the estimate was never fitted on (studies/calibrate fits on other pairs: the robot arm
+// in the room, knot and gears, slivers and lock, the arm and the pipes). A low-poly body
+// anywhere in the low-poly room, and slivers against a dense sphere. Before issue 43, cut
+// early, the pipes in the room were answered "no" 80 % wrong (ECE 0.71 at 8 node pairs), the
+// arm in the room 47 % wrong with every wrong answer at >= 0.99: the cell model is blind to
+// large flat triangles and read as "no". Bounds: ECE 0.12 for ~340 answers (a bin's sampling
+// error alone is about 0.03-0.05), 0.2 at 8 node pairs (two expansions: the estimate can only
+// say the base rate of what it saw; measured 0.15-0.19 here and in adb-calibrate's check),
+// confident wrong answers at most 1 % of all answers.
+TEST(AdbConfidence, HeldOutPairsOfDifferentModelsAreCalibratedUnderBudgets) {
+  const TriangleMesh room = gen::makeFixedModel("room");
+  const TriangleMesh pipes = gen::makeModel("pipes", 400);
+  const TriangleMesh sphere = gen::makeModel("sphere", 1000);
+  const TriangleMesh slivers = gen::makeModel("slivers", 4000);
+  struct HeldOut {
+    const char* name;
+    const TriangleMesh& a;
+    const TriangleMesh& b;
+    Placement placement;
+  };
+  for (const HeldOut& pair : {HeldOut{"room+pipes-400", room, pipes, Placement::Inside},
+                              HeldOut{"sphere+slivers", sphere, slivers, Placement::Distances}}) {
+    for (std::uint64_t budget : {8ull, 32ull, 128ull}) {
+      const Calibration c = calibrate(pair.a, pair.b, pair.placement, budget);
+      ASSERT_GT(c.answers, 250) << pair.name;
+      EXPECT_LE(c.ece, budget == 8 ? 0.2 : 0.12) << pair.name << " budget " << budget;
+      EXPECT_LE(c.confidentWrong * 100, c.answers) << pair.name << " budget " << budget;
     }
   }
 }

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace adb::detail {
@@ -69,6 +70,12 @@ class BucketQueue {
     eachBucket(*this, f);
   }
 
+  /// f(bucket's entries, bucket) for occupied buckets, highest first, while f returns true.
+  template <class F>
+  void forEachBucketWhile(F&& f) const {
+    eachBucket(*this, f);
+  }
+
   /// Removes the entries for which drop(entry) is true, keeping the others' order; returns
   /// how many went.
   template <class Drop>
@@ -100,7 +107,12 @@ class BucketQueue {
       for (std::uint64_t bits = self.m_occupied[word]; bits != 0;) {
         const int bit = 63 - __builtin_clzll(bits);
         bits &= ~(std::uint64_t{1} << bit);
-        f(self.m_buckets[word * 64 + bit], word * 64 + bit);
+        // f may return whether to go on (forEachBucketWhile).
+        if constexpr (std::is_same_v<decltype(f(self.m_buckets[0], 0)), bool>) {
+          if (!f(self.m_buckets[word * 64 + bit], word * 64 + bit)) return;
+        } else {
+          f(self.m_buckets[word * 64 + bit], word * 64 + bit);
+        }
       }
     }
   }

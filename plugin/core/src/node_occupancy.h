@@ -65,10 +65,10 @@ inline std::uint64_t occupancyCells(const NodeOccupancy& o, const int from[3], c
   return x & y & z;
 }
 
-/// Whether node n (occupancy o) has a triangle that may reach into the box [lo, hi] of its
-/// local frame: false proves that none does. An empty box (lo > hi on an axis) holds none.
-inline bool occupiedWithin(const Node& n, const NodeOccupancy& o, const Vec3& lo, const Vec3& hi) {
-  int from[3], to[3];
+/// The slices of node n's grid that the box [lo, hi] of its local frame spans along each axis,
+/// from[k]..to[k] inclusive; false for an empty box (lo > hi on an axis).
+inline bool occupancySpan(const Node& n, const NodeOccupancy& o, const Vec3& lo, const Vec3& hi,
+                          int from[3], int to[3]) {
   for (int k = 0; k < 3; ++k) {
     if (lo[k] > hi[k]) return false;
     const int slices = 1 << o.shift[k];
@@ -76,7 +76,27 @@ inline bool occupiedWithin(const Node& n, const NodeOccupancy& o, const Vec3& lo
     from[k] = occupancySlice((lo[k] - n.lo[k]) * scale - kQuerySliceMargin, slices, 0);
     to[k] = occupancySlice((hi[k] - n.lo[k]) * scale + kQuerySliceMargin, slices, slices - 1);
   }
-  return (o.cells & occupancyCells(o, from, to)) != 0;
+  return true;
+}
+
+/// Whether node n (occupancy o) has a triangle that may reach into the box [lo, hi] of its
+/// local frame: false proves that none does. An empty box (lo > hi on an axis) holds none.
+inline bool occupiedWithin(const Node& n, const NodeOccupancy& o, const Vec3& lo, const Vec3& hi) {
+  int from[3], to[3];
+  return occupancySpan(n, o, lo, hi, from, to) && (o.cells & occupancyCells(o, from, to)) != 0;
+}
+
+/// How full of node n's triangles the part of its box within [lo, hi] is: the share of the
+/// cells it spans that some triangle touches, in [0, 1]; 0 for an empty box. A large flat
+/// triangle fills every cell it crosses, where the cell model's area threshold may count none
+/// (issue 43: the evidence of pairs the model is blind to).
+inline double occupiedFill(const Node& n, const NodeOccupancy& o, const Vec3& lo,
+                           const Vec3& hi) {
+  int from[3], to[3];
+  if (!occupancySpan(n, o, lo, hi, from, to)) return 0.0;
+  const int spanned = (to[0] - from[0] + 1) * (to[1] - from[1] + 1) * (to[2] - from[2] + 1);
+  const int occupied = __builtin_popcountll(o.cells & occupancyCells(o, from, to));
+  return spanned > 0 ? static_cast<double>(occupied) / spanned : 0.0;
 }
 
 /// Fills the tree's occupancy, one record per node (needs the hierarchy).

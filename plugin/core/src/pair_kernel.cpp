@@ -9,29 +9,39 @@
 
 namespace adb::detail {
 
+// The boxes each node of pair (i, j) is tested in: B's node j posed in A's frame, and A's
+// node i posed in B's, each grown by `grow`.
+void PairKernel::reachedBoxes(int i, int j, double grow, Vec3 inA[2], Vec3 inB[2]) const {
+  for (int k = 0; k < 3; ++k) {
+    inA[0][k] = m_b.cOther[k].lane(j) - m_b.hOther[k].lane(j) - grow;
+    inA[1][k] = m_b.cOther[k].lane(j) + m_b.hOther[k].lane(j) + grow;
+    inB[0][k] = m_a.cOther[k].lane(i) - m_a.hOther[k].lane(i) - grow;
+    inB[1][k] = m_a.cOther[k].lane(i) + m_a.hOther[k].lane(i) + grow;
+  }
+}
+
 unsigned PairKernel::cellsApart(unsigned mask, double grow) const {
   unsigned apart = 0;
   for (int i = 0; i < m_a.count; ++i) {
     for (int j = 0; j < m_b.count; ++j) {
       const int p = index(i, j);
       if (((mask >> p) & 1u) == 0) continue;
-      Vec3 lo, hi;  // B's node j in A's frame, then A's node i in B's
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = m_b.cOther[k].lane(j) - m_b.hOther[k].lane(j) - grow;
-        hi[k] = m_b.cOther[k].lane(j) + m_b.hOther[k].lane(j) + grow;
-      }
-      if (!occupiedWithin(*m_a.node[i], *m_a.cells[i], lo, hi)) {
+      Vec3 inA[2], inB[2];
+      reachedBoxes(i, j, grow, inA, inB);
+      if (!occupiedWithin(*m_a.node[i], *m_a.cells[i], inA[0], inA[1]) ||
+          !occupiedWithin(*m_b.node[j], *m_b.cells[j], inB[0], inB[1])) {
         apart |= 1u << p;
-        continue;
       }
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = m_a.cOther[k].lane(i) - m_a.hOther[k].lane(i) - grow;
-        hi[k] = m_a.cOther[k].lane(i) + m_a.hOther[k].lane(i) + grow;
-      }
-      if (!occupiedWithin(*m_b.node[j], *m_b.cells[j], lo, hi)) apart |= 1u << p;
     }
   }
   return apart;
+}
+
+double PairKernel::occupiedFill(int i, int j) const {
+  Vec3 inA[2], inB[2];
+  reachedBoxes(i, j, m_frame.slack, inA, inB);
+  return detail::occupiedFill(*m_a.node[i], *m_a.cells[i], inA[0], inA[1]) *
+         detail::occupiedFill(*m_b.node[j], *m_b.cells[j], inB[0], inB[1]);
 }
 
 unsigned PairKernel::measure(double separation[4]) {

@@ -84,6 +84,12 @@ class PairKernel {
     return cellsApart(mask, m_frame.slack - shrink);
   }
 
+  /// How full both nodes of pair (i, j) are where their boxes meet, in [0, 1]: the share of
+  /// occupied cells (node_occupancy.h) in the part of A's node i that B's node j's posed box
+  /// reaches, times the same share for B. Only for a pair overlapMask() reported (both frames
+  /// are posed then). The evidence of a pair whose nodes the cell model cannot speak for.
+  double occupiedFill(int i, int j) const;
+
   /// The pairs that the boxes and slabs leave overlapping: the tests that measure() turns
   /// into distances.
   unsigned boxAndSlabMask() {
@@ -132,6 +138,7 @@ class PairKernel {
 
  private:
   unsigned cellsApart(unsigned mask, double grow) const;
+  void reachedBoxes(int i, int j, double grow, Vec3 inA[2], Vec3 inB[2]) const;
 
   // Boxes of nodes ids[0..count) (the last repeated in an unused lane) in their own frame:
   // centre and half extents in double, as Node::boxLo/boxHi give them.

@@ -50,4 +50,10 @@ bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants&
   return PairKernel(*ta.tree, &a, 1, *tb.tree, &b, 1, frame).overlapMask() != 0;
 }
 
+double pairFill(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
+                std::uint32_t b, const RelativeFrame& frame) {
+  PairKernel pair(*ta.tree, &a, 1, *tb.tree, &b, 1, frame);
+  return pair.overlapMask() != 0 ? pair.occupiedFill(0, 0) : 0.0;
+}
+
 }  // namespace adb::detail

@@ -35,5 +35,8 @@ PairEstimate estimatePair(const TreeConstants& ta, std::uint32_t a, int depthA,
                           const RelativeFrame& frame);
 bool nodesOverlap(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
                   std::uint32_t b, const RelativeFrame& frame);
+/// PairKernel::occupiedFill of one pair; 0 when the pair is proven apart.
+double pairFill(const TreeConstants& ta, std::uint32_t a, const TreeConstants& tb,
+                std::uint32_t b, const RelativeFrame& frame);
 
 }  // namespace adb::detail

@@ -78,6 +78,13 @@ constexpr std::size_t kReservedWitnesses = 128;
 constexpr std::size_t kReservedOpenPairs = 256;
 // Exact mode's stack entries carry no estimate until a budget stop asks for one.
 constexpr float kUnestimated = -1.0f;
+// A pair the cell model is blind to (Traversal::Impl::blind) is keyed by how full of triangles
+// both nodes are where their boxes meet, scaled by what resolving it costs: 1 up to this many
+// triangles in the two nodes together (a leaf pair: at most 16 triangle tests), falling as
+// 1 / triangles beyond. Two nodes of a few large triangles are then resolved exactly early,
+// for a handful of triangle tests, instead of queued last for their E[X] of about 0 (issue 43:
+// a budget stopped with them open, and the estimate read them as "no").
+constexpr double kCheapBlindTriangles = 8.0;
 
 // The clock is read once this much work has been done since the last read, counting 4 per
 // popped pair (its evaluations, ~0.1 us each) and 1 per triangle test: at most every 64 units
@@ -198,6 +205,8 @@ struct Traversal::Impl {
   detail::BucketQueue<QueueEntry, detail::kPriorityBuckets> queue;
   double openExpected = 0.0;  // sum of E[X] over the queue
   double openDoubt = 0.0;     // sum of min(1, E[X]) over the queue
+  std::uint32_t blindOpen = 0;  // queued pairs the model is blind to
+  double blindLogMiss = 0.0;    // sum of log(1 - key) over them
   bool openStale = false;     // `heap` does not mirror the queue
   // What an expansion at depth sum d needs besides its pairs, worked out on first use in a
   // query (a division and up to ten multiplications, shared by every expansion at d).
@@ -217,6 +226,8 @@ struct Traversal::Impl {
   double prunedExpected = 0.0;  // sum of E[X] over them
   bool exactHit = false;
   bool witnessesFull = false;  // stopWhenWitnessesFull: the last hit filled the witnesses
+  mutable double rootFill = -1.0;  // the roots' occupied fill, worked out when evidence needs it
+  bool inStep = false;             // work.nodePairs is not yet in result.nodePairs
 
   // --- the front (QuerySettings::keepFront), kept across reset() -----------------------------
   // `front` is the last walk's record (traversal_front.h), `nextFront` the one being written.
@@ -310,6 +321,9 @@ struct Traversal::Impl {
     stackLowWater = 0;
     queue.clear();
     openExpected = openDoubt = 0.0;
+    blindOpen = 0;
+    blindLogMiss = 0.0;
+    rootFill = -1.0;
     openStale = false;
     tableKey = s.mode == QueryMode::Adb && s.adbKey == AdbKey::Table &&
                ta.maxDepth() <= kMaxQueueDepth && tb.maxDepth() <= kMaxQueueDepth;
@@ -378,6 +392,7 @@ struct Traversal::Impl {
     workSinceClock = 0;
     firstCheck = true;
     progressed = false;
+    inStep = true;
     if (walking) {
       runFront();
     } else if (settings.mode == QueryMode::Exact) {
@@ -387,6 +402,7 @@ struct Traversal::Impl {
     } else {
       runAdb();
     }
+    inStep = false;
     work.seconds = std::chrono::duration<double>(Clock::now() - stepStart).count();
     result.nodePairs += work.nodePairs;
     result.triangleTests += work.triangleTests;
@@ -1082,9 +1098,9 @@ struct Traversal::Impl {
   }
 
   // --- ADB mode: the paper's priority traversal ----------------------------------------
-  void push(const detail::PairEstimate& est, std::uint32_t ia, std::uint32_t ib,
+  void push(const detail::PairEstimate& est, double key, std::uint32_t ia, std::uint32_t ib,
             std::uint32_t region, int da, int db) {
-    const Entry e{static_cast<float>(est.lower), static_cast<float>(doubtOf(est)), ia, ib, region,
+    const Entry e{static_cast<float>(key), static_cast<float>(doubtOf(est)), ia, ib, region,
                   static_cast<std::uint16_t>(da), static_cast<std::uint16_t>(db),
                   static_cast<float>(est.expected)};
     heap.push_back(e);
@@ -1109,12 +1125,16 @@ struct Traversal::Impl {
   }
 
   void pushQueue(std::uint32_t ia, std::uint32_t ib, std::uint32_t region, int da, int db,
-                 double expected, int bucket) {
+                 double expected, int bucket, bool isBlind) {
     const QueueEntry e{ia, ib, region, static_cast<std::uint8_t>(da),
                        static_cast<std::uint8_t>(db), encodeExpected(expected)};
     const double x = decodeExpected(e.expected);
     openExpected += x;
     openDoubt += std::min(1.0, x);
+    if (isBlind) {
+      ++blindOpen;
+      blindLogMiss += priorities->logMiss[bucket];
+    }
     queue.push(e, bucket);
     openStale = true;
   }
@@ -1122,20 +1142,27 @@ struct Traversal::Impl {
   QueueEntry popQueue() {
     int bucket = 0;
     const QueueEntry e = queue.pop(bucket);
-    forgetOpen(e);
+    forgetOpen(e, bucket);
     return e;
   }
 
-  // Takes a pair that left the queue off the running sums (exactly 0 once it is empty).
-  void forgetOpen(const QueueEntry& e) {
+  // Takes a pair that left the queue from `bucket` off the running sums (exactly 0 once it is
+  // empty).
+  void forgetOpen(const QueueEntry& e, int bucket) {
     openStale = true;
     if (queue.empty()) {
       openExpected = openDoubt = 0.0;
+      blindOpen = 0;
+      blindLogMiss = 0.0;
       return;
     }
     const double x = decodeExpected(e.expected);
     openExpected -= x;
     openDoubt -= std::min(1.0, x);
+    if (blind(e.a, e.b)) {
+      --blindOpen;
+      blindLogMiss = blindOpen == 0 ? 0.0 : blindLogMiss - priorities->logMiss[bucket];
+    }
   }
 
   // The first step of either key: the roots tested and estimated. False when they are apart
@@ -1153,7 +1180,7 @@ struct Traversal::Impl {
       detail::PairEstimate root;
       if (!testRoots(root)) return;
       pushQueue(0, 0, childRegion(kNoRegion, 0, 0), 0, 0, root.expected,
-                detail::kPriorityBuckets - 1);
+                detail::kPriorityBuckets - 1, blind(0, 0));
     }
     while (!queue.empty()) {
       if (!budgetLeft()) {
@@ -1193,16 +1220,21 @@ struct Traversal::Impl {
           notePruned(c.expected);
           continue;
         }
-        if (possible && acceptable(x.ca[i], x.cb[j]) && std::min(c.sA, c.sB) >= passing &&
+        const bool speaks = acceptable(x.ca[i], x.cb[j]);
+        if (possible && speaks && std::min(c.sA, c.sB) >= passing &&
             collisionTailCouldExceed(c.s, c.sA, c.sB, passing, settings.pMin)) {
           const double eq3 = collisionLowerBound(c.s, c.sA, c.sB, lb);
           if (eq3 > settings.pMin && accept(x.ca[i], x.cb[j], eq3)) return true;
         }
-        const int bucket = possible ? detail::priorityBucket(*priorities,
-                                                             static_cast<float>(c.expected), column)
-                                    : 0;
+        int bucket = possible ? detail::priorityBucket(*priorities,
+                                                       static_cast<float>(c.expected), column)
+                              : 0;
+        if (!speaks) {
+          bucket = std::max(bucket, detail::bucketOfProbability(
+                                        blindKey(pairs.occupiedFill(i, j), x.ca[i], x.cb[j])));
+        }
         pushQueue(x.ca[i], x.cb[j], childRegion(e.region, x.depthA, x.depthB), x.depthA,
-                  x.depthB, c.expected, bucket);
+                  x.depthB, c.expected, bucket, !speaks);
       }
     }
     return false;
@@ -1235,6 +1267,13 @@ struct Traversal::Impl {
     openStale = false;
   }
 
+  // Each open pair's fill (OpenPair::fill), for the ones not worked out since they were listed.
+  void fillOpenPairs() {
+    for (Entry& e : heap) {
+      if (e.fill < 0.0f) e.fill = static_cast<float>(detail::pairFill(a, e.a, b, e.b, frame));
+    }
+  }
+
   Evidence queueEvidence() const {
     Evidence ev;
     double logMiss = 0.0;  // log prod (1 - p) over the open pairs
@@ -1245,10 +1284,36 @@ struct Traversal::Impl {
     ev.frontierUnion = -std::expm1(logMiss);
     ev.frontierDoubt = std::max(0.0, openDoubt);
     ev.expectedCells = std::max(0.0, openExpected) + prunedExpected;
-    ev.prunedDoubt = prunedMass;
     ev.openPairs = static_cast<std::uint32_t>(std::min<std::size_t>(queue.size(), 0xFFFFFFFFu));
-    ev.collisionPairs = result.collisionPairs;
+    ev.blindPairs = blindOpen;
+    ev.blindUnion = std::clamp(-std::expm1(blindLogMiss), 0.0, 1.0);
+    int filled = 0;
+    queue.forEachBucketWhile([&](const std::vector<QueueEntry>& entries, int) {
+      for (auto it = entries.rbegin(); it != entries.rend(); ++it) {  // pop order
+        if (!addOpenFill(ev, it->a, it->b, filled)) return false;
+      }
+      return true;
+    });
+    commonEvidence(ev);
     return ev;
+  }
+
+  // The running sums over the queue worked out anew, after pairs left it other than by pop.
+  void recountOpen() {
+    openStale = true;
+    openExpected = openDoubt = blindLogMiss = 0.0;
+    blindOpen = 0;
+    queue.forEachBucket([this](const std::vector<QueueEntry>& entries, int bucket) {
+      for (const QueueEntry& e : entries) {
+        const double x = decodeExpected(e.expected);
+        openExpected += x;
+        openDoubt += std::min(1.0, x);
+        if (blind(e.a, e.b)) {
+          ++blindOpen;
+          blindLogMiss += priorities->logMiss[bucket];
+        }
+      }
+    });
   }
 
   // --- ADB mode with the Eq. 3 key --------------------------------------------------------
@@ -1296,11 +1361,14 @@ struct Traversal::Impl {
           notePruned(est.expected);
           continue;
         }
-        if (est.lower > settings.pMin && acceptable(x.ca[i], x.cb[j]) &&
-            accept(x.ca[i], x.cb[j], est.lower)) {
+        const bool speaks = acceptable(x.ca[i], x.cb[j]);
+        if (est.lower > settings.pMin && speaks && accept(x.ca[i], x.cb[j], est.lower)) {
           return true;
         }
-        push(est, x.ca[i], x.cb[j], childRegion(e.region, x.depthA, x.depthB), x.depthA,
+        const double key =
+            speaks ? est.lower
+                   : std::max(est.lower, blindKey(pairs.occupiedFill(i, j), x.ca[i], x.cb[j]));
+        push(est, key, x.ca[i], x.cb[j], childRegion(e.region, x.depthA, x.depthB), x.depthA,
              x.depthB);
       }
     }
@@ -1325,6 +1393,42 @@ struct Traversal::Impl {
     const NodeOccupancy& ob = b.tree->occupancy()[ib];
     if (settings.minTrianglesToAccept > 0 && (oa.slivers || ob.slivers)) return false;
     return std::min<int>(oa.triangles, ob.triangles) >= settings.minTrianglesToAccept;
+  }
+
+  // Whether the cell model is blind to a pair: it may not be accepted on probability (a leaf
+  // pair, a node of few triangles or of slivers), and its E[X] says little either way.
+  bool blind(std::uint32_t ia, std::uint32_t ib) const { return !acceptable(ia, ib); }
+
+  // The priority key of a blind pair whose nodes are `fill` full where they meet
+  // (PairKernel::occupiedFill): the fill, discounted by the triangles that resolving the pair
+  // may take (kCheapBlindTriangles).
+  double blindKey(double fill, std::uint32_t ia, std::uint32_t ib) const {
+    const double triangles = static_cast<double>(a.tree->occupancy()[ia].triangles) +
+                             static_cast<double>(b.tree->occupancy()[ib].triangles);
+    return fill * std::min(1.0, kCheapBlindTriangles / std::max(1.0, triangles));
+  }
+
+  // The roots' fill, worked out once per query and only where a stop needs evidence (a query
+  // that completes pays nothing for it).
+  double rootsFill() const {
+    if (rootFill < 0.0) rootFill = detail::pairFill(a, 0, b, 0, frame);
+    return rootFill;
+  }
+
+  // Adds one open pair's fill to the evidence: true while more are wanted.
+  bool addOpenFill(Evidence& ev, std::uint32_t ia, std::uint32_t ib, int& filled) const {
+    const double fill = detail::pairFill(a, ia, b, ib, frame);
+    ev.openFillUnion = 1.0 - (1.0 - ev.openFillUnion) * (1.0 - fill);
+    ev.openFillMax = std::max(ev.openFillMax, fill);
+    return ++filled < kFilledOpenPairs;
+  }
+
+  // The evidence every key and mode shares: what was accepted, pruned and done.
+  void commonEvidence(Evidence& ev) const {
+    ev.prunedDoubt = prunedMass;
+    ev.collisionPairs = result.collisionPairs;
+    ev.rootFill = rootsFill();
+    ev.nodePairs = result.nodePairs + (inStep ? work.nodePairs : 0);
   }
 
   // A collision pair (p > p_min). Returns true when it is the k_min-th: the query is decided.
@@ -1366,18 +1470,29 @@ struct Traversal::Impl {
   Evidence evidence() const {
     if (tableKey) return queueEvidence();
     Evidence ev;
-    double miss = 1.0;  // prod (1 - p) over the open pairs
+    double miss = 1.0;       // prod (1 - p) over the open pairs
+    double blindMiss = 1.0;  // the same over the blind ones
     for (const Entry& e : heap) {
       miss *= 1.0 - static_cast<double>(e.p);
       ev.frontierDoubt += e.upper;
       ev.bestOpen = std::max(ev.bestOpen, static_cast<double>(e.p));
       ev.expectedCells += e.expected;
+      if (blind(e.a, e.b)) {
+        ++ev.blindPairs;
+        blindMiss *= 1.0 - static_cast<double>(e.p);
+      }
+    }
+    // The heap's first entries are its largest keys (an exact mode stack's last, its next).
+    int filled = 0;
+    for (std::size_t k = 0; k < heap.size(); ++k) {
+      const Entry& e = heap[settings.mode == QueryMode::Adb ? k : heap.size() - 1 - k];
+      if (!addOpenFill(ev, e.a, e.b, filled)) break;
     }
     ev.expectedCells += prunedExpected;
     ev.frontierUnion = 1.0 - miss;
-    ev.prunedDoubt = prunedMass;
+    ev.blindUnion = 1.0 - blindMiss;
     ev.openPairs = static_cast<std::uint32_t>(std::min<std::size_t>(heap.size(), 0xFFFFFFFFu));
-    ev.collisionPairs = result.collisionPairs;
+    commonEvidence(ev);
     return ev;
   }
 
@@ -1399,11 +1514,8 @@ struct Traversal::Impl {
   void dropFullRegionsFromHeap() {
     if (tableKey) {
       if (regionHits.empty()) return;
-      queue.removeIf([this](const QueueEntry& e) {
-        if (!regionFull(e.region)) return false;
-        forgetOpen(e);
-        return true;
-      });
+      queue.removeIf([this](const QueueEntry& e) { return regionFull(e.region); });
+      recountOpen();
       return;
     }
     if (dropFullRegions()) std::make_heap(heap.begin(), heap.end(), heapLess);
@@ -1418,7 +1530,10 @@ struct Traversal::Impl {
       if (e.p != kUnestimated) continue;
       const detail::PairEstimate est =
           detail::estimatePair(a, e.a, e.depthA, b, e.b, e.depthB, frame);
-      e.p = static_cast<float>(est.lower);
+      e.p = static_cast<float>(
+          blind(e.a, e.b) ? std::max(est.lower, blindKey(detail::pairFill(a, e.a, b, e.b, frame),
+                                                          e.a, e.b))
+                          : est.lower);
       e.upper = static_cast<float>(doubtOf(est));
       e.expected = static_cast<float>(est.expected);
     }
@@ -1454,6 +1569,7 @@ const QueryResult& Traversal::result() const { return m_impl->result; }
 const StepWork& Traversal::lastStep() const { return m_impl->work; }
 const std::vector<OpenPair>& Traversal::openPairs() const {
   m_impl->mirrorQueue();
+  m_impl->fillOpenPairs();
   return m_impl->heap;
 }
 const std::vector<Witness>& Traversal::witnesses() const {

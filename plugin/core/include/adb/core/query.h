@@ -190,12 +190,18 @@ struct QueryResult {
 
 /// A node pair still queued when an ADB query stopped: unresolved, with its estimates.
 struct OpenPair {
-  float p;                 ///< Eq. 3 lower bound: the traversal's priority
+  /// The traversal's priority key: Eq. 3's lower bound, or for a pair the cell model is blind
+  /// to (a leaf pair, nodes of few triangles or slivers) at least its fill discounted by what
+  /// resolving it costs. An order, not a probability: openPairProbability() is one.
+  float p;
   float upper;             ///< Pr[X >= 1]: the pair's share of the "no collision" doubt
   std::uint32_t a, b;      ///< node indices in tree A and tree B
   std::uint32_t region;    ///< contact region (QuerySettings::hitsPerRegion) or kNoRegion
   std::uint16_t depthA, depthB;
   float expected;          ///< E[X]: the collision cells the model expects the pair to hold
+  /// How full of triangles both nodes are where their boxes meet (the share of occupied cells
+  /// on each side, multiplied), [0, 1]; worked out by openPairs().
+  float fill = -1.0f;
   static constexpr std::uint32_t kNoRegion = 0xFFFFFFFFu;
 };
 
