@@ -1,25 +1,35 @@
 // adb-calibrate: fits the collision estimate (adb/core/collision_estimate.h) on generated
-// models and checks it on meshes it never saw.
+// models and pairs of models, and checks it on pairs it never saw, at the budgets users set.
 //
-// The fit set: the six generated models at --triangles, the sliver cylinder at --triangles,
-// the pipe bundle at 400 triangles and the 296-triangle robot arm; checked besides the
-// --mesh files: that arm anywhere in the generated room (two different models, FCL's
-// robot-in-a-room poses).
-// For every benchmark pose (Zachmann's procedure: distances 0.4 to 2.0, random rotations) whose
-// root boxes overlap, each ADB quality setting is run as one Traversal stepped towards work
-// budgets of 1, 2, 4, ... node pairs (a step makes at least one expansion, so the states sit
-// at 1, 5, 9, 13, 29, ... node pairs); every budget stop is a sample (the estimate answers
-// those): the evidence's features and the exact answer. Work budgets make the fit
-// reproducible; a time budget stops a traversal in one of the same states. The fit is a
-// logistic regression (Newton's method) whose weights on evidence features are held >= 0,
-// each generated model weighted equally. Quality stops (k_min, or a queue emptied by pruning)
-// are fitted apart, on whether the paper's answer is right.
-// It prints the weights as the C++ line collision_estimate.cpp holds and the expected
-// calibration error (10 bins) per model and budget, on the fit set and on the check meshes.
+// The fit set: the six generated models at --triangles, the sliver cylinder, the pipe bundle
+// at 400 triangles and the 296-triangle robot arm, each against a copy of itself; and pairs of
+// different models: the arm anywhere in the generated room (FCL's robot-in-a-room poses), a
+// dense model against another, slivers against a dense model, the arm against the pipes.
+// Checked, never fitted: two generated pairs (the pipes anywhere in the room, the sphere
+// against the slivers) and whatever --mesh, --pair and --inside name.
 //
-//   adb-calibrate [--triangles N] [--rotations N] [--mesh FILE ...] [--samples FILE]
+// For every pose (Zachmann's distances 0.4 to 2.0 with random rotations, or anywhere inside the
+// environment's box) whose root boxes overlap:
+// - the fit's samples: each ADB quality setting run as one Traversal stepped towards work
+//   budgets of 1, 2, 4, ... node pairs; every budget stop is a sample (its evidence's features
+//   and the exact answer), every quality stop (k_min, or a queue emptied by pruning) a sample
+//   of whether the paper's answer is right;
+// - the check: QuerySettings' defaults under each of the budgets users set (8, 32, 128 and 512
+//   node pairs, 5 and 20 microseconds), one query each, as collide() runs it: its answer and
+//   confidence as the library gives them, and its evidence, to judge freshly fitted weights.
+// The budget model is a logistic regression (Newton's method, evidence weights >= 0, each
+// case weighted equally) followed by a monotone recalibration (pool-adjacent-violators); the
+// quality model a logistic regression of whether the paper's answer is right.
+//
+// It prints the weights and the map as the C++ lines collision_estimate.cpp holds, then per
+// case and budget the expected calibration error (10 bins, studies/tradeoff/calibration.h),
+// the wrong answers and the wrong answers given with confidence >= 0.99 (both as shares of all
+// answers), as the library answers and as the fresh fit would; writes reliability.csv and
+// reliability.png (a reliability diagram per budget) into --out.
+//
+//   adb-calibrate [--triangles N] [--rotations N] [--mesh FILE ...] [--pair A,B ...]
+//                 [--inside ENV,BODY ...] [--samples FILE] [--out DIR] [--no-plots]
 #include <CLI/CLI.hpp>
-#include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
@@ -34,30 +44,36 @@
 #include <string>
 #include <vector>
 
-#include "adb/support/benchmark_poses.h"
 #include "adb/core/collision_estimate.h"
-#include "adb/support/mesh_generators.h"
+#include "adb/core/open_pair_estimate.h"
+#include "adb/core/triangle_test.h"
 #include "adb/core/query.h"
 #include "adb/core/tree.h"
 #include "adb/io/mesh_file.h"
+#include "adb/support/benchmark_poses.h"
+#include "adb/support/mesh_generators.h"
+#include "logistic_fit.h"
 #include "shared/command_line.h"
 #include "tradeoff/calibration.h"
+#include "tradeoff/plots.h"
 
 namespace {
 
+using adb::calibrate::CaseSamples;
+using adb::calibrate::MonotoneMap;
+using adb::calibrate::Sample;
 using Features = std::array<double, adb::kEstimateFeatures>;
 
-struct Sample {
-  Features f;
-  bool truth;
-  int checkpoint;    // budget stops: the work budget was 2^checkpoint node pairs
-  bool paperAnswer;  // quality stops: "collision" at k_min, "no" after pruning (paper Fig. 3)
-};
-
-struct ModelSamples {
-  std::string name;
-  std::vector<Sample> samples;  // budget stops, or quality stops (one set of each per model)
-};
+template <std::size_t N>
+std::vector<double> toVector(const std::array<double, N>& f) {
+  return std::vector<double>(f.begin(), f.end());
+}
+template <std::size_t N>
+std::array<double, N> toArray(const std::vector<double>& w) {
+  std::array<double, N> out{};
+  std::copy_n(w.begin(), std::min(w.size(), N), out.begin());
+  return out;
+}
 
 constexpr int kCheckpoints = 14;  // work budgets 2^0 .. 2^13 node pairs
 struct Quality {
@@ -70,10 +86,130 @@ struct Quality {
 constexpr Quality kQualities[] = {
     {0.99, 10, false}, {0.9, 5, false}, {0.9, 1, false}, {0.5, 1, false}, {0.99, 10, true}};
 
-// The samples of one pose under one quality setting.
+// The budgets the check runs at QuerySettings' defaults (issue 43's targets).
+struct CheckBudget {
+  const char* label;
+  adb::StepBudget budget;
+};
+const CheckBudget kCheckBudgets[] = {
+    {"8 pairs", {8, std::numeric_limits<double>::infinity()}},
+    {"32 pairs", {32, std::numeric_limits<double>::infinity()}},
+    {"128 pairs", {128, std::numeric_limits<double>::infinity()}},
+    {"512 pairs", {512, std::numeric_limits<double>::infinity()}},
+    {"5 us", {std::numeric_limits<std::uint64_t>::max(), 5.0}},
+    {"20 us", {std::numeric_limits<std::uint64_t>::max(), 20.0}},
+};
+constexpr int kCheckBudgetCount = static_cast<int>(std::size(kCheckBudgets));
+
+// One query of the check: how it stopped, what the library answered, and what a fresh fit
+// needs to answer it again.
+struct CheckQuery {
+  enum class Kind { Certain, Budget, Quality } kind = Kind::Certain;
+  bool reachedKMin = false;
+  bool libraryCollides = false;
+  double libraryConfidence = 1.0;
+  Features f{};
+  bool truth = false;
+};
+
+struct CaseResult {
+  std::string name;
+  bool fit = false;
+  CaseSamples budget, quality, openPairs;
+  std::array<std::vector<CheckQuery>, kCheckBudgetCount> check;
+};
+
+// How the second body is placed: Zachmann's distances, or anywhere inside the first's box
+// (FCL's robot in a room: adb::insidePoses).
+enum class Placement { Distances, Inside };
+
+struct Case {
+  std::string name;
+  adb::TriangleMesh a, b;
+  Placement placement = Placement::Distances;
+  bool fit = false;
+};
+
+// The tree-order triangles below a node: a contiguous range, from its leftmost leaf's first
+// to its rightmost leaf's last.
+std::pair<std::uint32_t, std::uint32_t> trianglesBelow(const adb::AdbTree& tree,
+                                                       std::uint32_t node) {
+  std::uint32_t left = node, right = node;
+  while (!tree.nodes()[left].isLeaf()) left = tree.nodes()[left].firstChild();
+  while (!tree.nodes()[right].isLeaf()) right = tree.nodes()[right].firstChild() + 1;
+  const adb::Node& last = tree.nodes()[right];
+  return {tree.nodes()[left].firstTriangle(), last.firstTriangle() + last.triangleCount()};
+}
+
+// The triangles of a tree-order range posed in the world, each with its box.
+struct PosedTriangles {
+  std::vector<std::array<adb::Vec3, 3>> corners;
+  std::vector<adb::Aabb> boxes;
+};
+PosedTriangles posed(const adb::AdbTree& tree, const adb::Pose& pose,
+                     std::pair<std::uint32_t, std::uint32_t> range) {
+  PosedTriangles out;
+  for (std::uint32_t i = range.first; i < range.second; ++i) {
+    std::array<adb::Vec3, 3> v;
+    adb::Aabb box;
+    for (int k = 0; k < 3; ++k) {
+      v[k] = pose.rotation * (tree.localVertices()[tree.triangles()[i][k]] + tree.origin()) +
+             pose.translation;
+      box.grow(v[k]);
+    }
+    out.corners.push_back(v);
+    out.boxes.push_back(box);
+  }
+  return out;
+}
+
+// Whether a triangle below node a meets one below node b (brute force, boxes first); nothing
+// for pairs of more than kMaxLabelTests triangle pairs, which would take seconds.
+constexpr std::uint64_t kMaxLabelTests = 1u << 20;
+std::optional<bool> nodesTouch(const adb::AdbTree& ta, const adb::Pose& pa, std::uint32_t a,
+                               const adb::AdbTree& tb, const adb::Pose& pb, std::uint32_t b) {
+  const auto ra = trianglesBelow(ta, a), rb = trianglesBelow(tb, b);
+  if (std::uint64_t{ra.second - ra.first} * (rb.second - rb.first) > kMaxLabelTests) {
+    return std::nullopt;
+  }
+  const PosedTriangles x = posed(ta, pa, ra), y = posed(tb, pb, rb);
+  for (std::size_t i = 0; i < x.corners.size(); ++i) {
+    for (std::size_t j = 0; j < y.corners.size(); ++j) {
+      if ((x.boxes[i].lo.array() > y.boxes[j].hi.array()).any() ||
+          (y.boxes[j].lo.array() > x.boxes[i].hi.array()).any()) {
+        continue;
+      }
+      const auto& u = x.corners[i];
+      const auto& v = y.corners[j];
+      if (adb::trianglesIntersect(u[0], u[1], u[2], v[0], v[1], v[2])) return true;
+    }
+  }
+  return false;
+}
+
+// A few open pairs of a budget stop at the defaults, each labelled by whether its triangles
+// meet: the samples of the open-pair estimate (adb/core/open_pair_estimate.h), which decides
+// Bullet's plausible contacts.
+constexpr int kOpenPairsPerStop = 4;
+void sampleOpenPairs(const adb::AdbTree& treeA, const adb::AdbTree& treeB,
+                     const adb::PosePair& p, const adb::Traversal& t, int checkpoint,
+                     std::mt19937_64& rng, CaseSamples& out) {
+  const std::vector<adb::OpenPair>& open = t.openPairs();
+  if (open.empty()) return;
+  std::uniform_int_distribution<std::size_t> pick(0, open.size() - 1);
+  for (int k = 0; k < kOpenPairsPerStop; ++k) {
+    const adb::OpenPair& o = open[pick(rng)];
+    const std::optional<bool> touch = nodesTouch(treeA, p.a, o.a, treeB, p.b, o.b);
+    if (!touch) continue;
+    out.samples.push_back(Sample{toVector(adb::openPairFeatures(o, treeA, treeB)), *touch,
+                                 checkpoint});
+  }
+}
+
+// The fit's samples of one pose under one quality setting.
 void sampleTraversal(const adb::AdbTree& treeA, const adb::AdbTree& treeB,
-                     const adb::PosePair& p, const Quality& q, bool truth,
-                     std::vector<Sample>& out, std::vector<Sample>& quality) {
+                     const adb::PosePair& p, const Quality& q, bool truth, std::mt19937_64& rng,
+                     CaseResult& out) {
   adb::QuerySettings s;
   s.pMin = q.pMin;
   s.kMin = q.kMin;
@@ -89,241 +225,203 @@ void sampleTraversal(const adb::AdbTree& treeA, const adb::AdbTree& treeB,
     const std::uint64_t done = t.result().nodePairs;
     if (target <= done) continue;
     t.step(adb::StepBudget{target - done});
-    // The estimate answers budget stops only: a query that ended (certain, at k_min, or with
-    // its queue emptied by pruning) is not a sample.
     if (t.done()) {
       // Ended on its own: at k_min, or with a queue emptied by pruning (an exact hit or an
-      // exhaustive traversal is certain, not a sample).
+      // exhaustive traversal is certain, not a sample). The label is whether the paper's
+      // answer is right: the estimate keeps that answer and says how sure it is.
       const adb::QueryResult& r = t.result();
       adb::Evidence e = t.evidence();
       const bool reached = r.stop == adb::StopReason::QualityReached;
       if (reached || (r.stop == adb::StopReason::Completed && e.prunedDoubt > 0.0)) {
         e.quality = true;
         e.reachedKMin = reached;
-        // The label is whether the paper's answer is right: the estimate keeps that answer
-        // and says how sure it is (it flips it only where it is right less than half the
-        // time). A model of collision itself answered worse than the rule at these stops.
-        quality.push_back(Sample{adb::estimateFeatures(e), reached == truth, c, reached});
+        out.quality.samples.push_back(Sample{toVector(adb::estimateFeatures(e)), reached == truth, c});
       }
       return;
     }
-    out.push_back(Sample{adb::estimateFeatures(t.evidence()), truth, c, false});
+    out.budget.samples.push_back(Sample{toVector(adb::estimateFeatures(t.evidence())), truth, c});
+    if (q.pMin == 0.99 && q.kMin == 10 && !q.papersRules) {
+      sampleOpenPairs(treeA, treeB, p, t, c, rng, out.openPairs);
+    }
   }
 }
 
-struct Collected {
-  ModelSamples budget, quality;
-};
+// One check query: the defaults under `budget`, run once as collide() runs it.
+CheckQuery checkQuery(const adb::AdbTree& treeA, const adb::AdbTree& treeB,
+                      const adb::PosePair& p, const adb::StepBudget& budget, bool truth) {
+  adb::Traversal t(treeA, p.a, treeB, p.b, adb::QuerySettings{});
+  const adb::QueryResult& r = t.step(budget);
+  CheckQuery q;
+  q.truth = truth;
+  q.libraryCollides = r.collides;
+  q.libraryConfidence = r.confidence;
+  const bool certain = r.stop == adb::StopReason::ExactHit ||
+                       (r.stop == adb::StopReason::Completed && r.confidence >= 1.0);
+  if (!certain) {
+    adb::Evidence e = t.evidence();
+    e.quality = !adb::isBudgetStop(r.stop);
+    e.reachedKMin = r.stop == adb::StopReason::QualityReached;
+    q.kind = e.quality ? CheckQuery::Kind::Quality : CheckQuery::Kind::Budget;
+    q.reachedKMin = e.reachedKMin;
+    q.f = adb::estimateFeatures(e);
+  }
+  return q;
+}
 
-// How the second body is placed: Zachmann's distances, or anywhere inside the first's box
-// (FCL's robot in a room: adb::insidePoses).
-enum class Placement { Distances, Inside };
-
-// The samples of mesh A against mesh B (a second copy of A when they are the same), 17 x
-// `rotations` poses.
-Collected collect(const std::string& name, const adb::TriangleMesh& meshA,
-                  const adb::TriangleMesh& meshB, Placement placement, int rotations) {
-  const adb::AdbTree treeA(meshA), treeB(meshB);
+CaseResult collect(const Case& c, int rotations) {
+  const adb::AdbTree treeA(c.a), treeB(c.b);
   adb::QueryScratch scratch;
   adb::QuerySettings exact;
   exact.mode = adb::QueryMode::Exact;
   std::mt19937_64 rng(1);
-  Collected m{{name, {}}, {name, {}}};
-  for (int step = 0; step <= 16; ++step) {
-    for (int r = 0; r < rotations; ++r) {
+  CaseResult m;
+  m.name = c.name;
+  m.fit = c.fit;
+  m.budget.name = m.quality.name = m.openPairs.name = c.name;
+  // Inside poses have no distances: as many poses in all as the distances give.
+  const int steps = c.placement == Placement::Inside ? 1 : 17;
+  const int perStep = c.placement == Placement::Inside ? 17 * rotations : rotations;
+  for (int step = 0; step < steps; ++step) {
+    for (int r = 0; r < perStep; ++r) {
       const adb::PosePair p =
-          placement == Placement::Inside
-              ? adb::insidePoses(meshA.bounds(), meshB.bounds(), rng)
-              : adb::benchmarkPoses(meshA.bounds(), meshB.bounds(), 0.4 + 0.1 * step, rng);
+          c.placement == Placement::Inside
+              ? adb::insidePoses(c.a.bounds(), c.b.bounds(), rng)
+              : adb::benchmarkPoses(c.a.bounds(), c.b.bounds(), 0.4 + 0.1 * step, rng);
       const adb::QueryResult truth = adb::collide(treeA, p.a, treeB, p.b, exact, scratch);
       if (truth.nodePairs <= 1 && !truth.collides) continue;  // root boxes apart: not counted
       for (const Quality& q : kQualities) {
-        sampleTraversal(treeA, treeB, p, q, truth.collides, m.budget.samples, m.quality.samples);
+        sampleTraversal(treeA, treeB, p, q, truth.collides, rng, m);
+      }
+      for (int b = 0; b < kCheckBudgetCount; ++b) {
+        m.check[b].push_back(checkQuery(treeA, treeB, p, kCheckBudgets[b].budget, truth.collides));
       }
     }
   }
-  std::fprintf(stderr, "%s: %zu budget stops, %zu quality stops\n", name.c_str(),
+  std::fprintf(stderr, "%s (%s): %zu poses, %zu budget stops, %zu quality stops\n",
+               c.name.c_str(), c.fit ? "fit" : "check", m.check[0].size(),
                m.budget.samples.size(), m.quality.samples.size());
   return m;
 }
 
-
-// The weighted log-loss the fit minimises (each model's samples weigh 1 in all).
-double logLoss(const std::vector<ModelSamples>& models, const adb::EstimateWeights& w) {
-  double loss = 0.0;
-  for (const ModelSamples& m : models) {
-    const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
-    for (const Sample& s : m.samples) {
-      const double p = std::clamp(adb::logisticEstimate(s.f, w), 1e-15, 1.0 - 1e-15);
-      loss -= weight * std::log(s.truth ? p : 1.0 - p);
+// The estimate a fit gives: weights, map and quality weights.
+struct Estimate {
+  adb::EstimateWeights budget{}, quality{};
+  MonotoneMap map;
+  double collisionProbability(const CheckQuery& q) const {
+    if (q.kind == CheckQuery::Kind::Budget) {
+      return adb::monotoneMap(adb::logisticEstimate(q.f, budget), map.x.data(), map.y.data(),
+                              static_cast<int>(map.x.size()));
     }
+    const double right = adb::logisticEstimate(q.f, quality);
+    return q.reachedKMin ? right : 1.0 - right;
   }
-  return loss;
+};
+
+// The check queries' answers judged: by the library's own answers, or by `fresh`.
+std::vector<adb::tradeoff::JudgedAnswer> judged(const std::vector<CheckQuery>& queries,
+                                                const Estimate* fresh) {
+  std::vector<adb::tradeoff::JudgedAnswer> out;
+  out.reserve(queries.size());
+  for (const CheckQuery& q : queries) {
+    bool answer = q.libraryCollides;
+    double confidence = q.libraryConfidence;
+    if (fresh && q.kind != CheckQuery::Kind::Certain) {
+      const double p = fresh->collisionProbability(q);
+      answer = p >= 0.5;
+      confidence = answer ? p : 1.0 - p;
+    }
+    out.push_back({confidence, answer == q.truth});
+  }
+  return out;
 }
 
-// The gradient of the weighted log-loss at w.
-Eigen::VectorXd lossGradient(const std::vector<ModelSamples>& models,
-                             const adb::EstimateWeights& w) {
-  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(adb::kEstimateFeatures);
-  for (const ModelSamples& m : models) {
-    const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
-    for (const Sample& s : m.samples) {
-      const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), adb::kEstimateFeatures);
-      gradient += weight * (adb::logisticEstimate(s.f, w) - (s.truth ? 1.0 : 0.0)) * x;
-    }
+struct Judgement {
+  double ece = 0.0, wrongPct = 0.0, confidentWrongPct = 0.0;
+};
+
+Judgement judge(const std::vector<adb::tradeoff::JudgedAnswer>& answers) {
+  Judgement j;
+  if (answers.empty()) return j;
+  int wrong = 0, confidentWrong = 0;
+  for (const auto& a : answers) {
+    wrong += a.right ? 0 : 1;
+    confidentWrong += !a.right && a.confidence >= 0.99 ? 1 : 0;
   }
-  return gradient;
+  const double n = static_cast<double>(answers.size());
+  j.ece = adb::tradeoff::expectedCalibrationError(adb::tradeoff::reliabilityBins(answers));
+  j.wrongPct = 100.0 * wrong / n;
+  j.confidentWrongPct = 100.0 * confidentWrong / n;
+  return j;
 }
 
-// Newton's method with step halving (near-separable data make the plain step overshoot) on
-// the free weights; the held ones stay at 0.
-void newton(const std::vector<ModelSamples>& models,
-            const std::array<bool, adb::kEstimateFeatures>& free, adb::EstimateWeights& w) {
-  constexpr int n = adb::kEstimateFeatures;
-  for (int iteration = 0; iteration < 50; ++iteration) {
-    Eigen::MatrixXd hessian = Eigen::MatrixXd::Identity(n, n) * 1e-6;  // a little ridge
-    for (const ModelSamples& m : models) {
-      const double weight = 1.0 / static_cast<double>(std::max<std::size_t>(1, m.samples.size()));
-      for (const Sample& s : m.samples) {
-        const double p = adb::logisticEstimate(s.f, w);
-        const Eigen::Map<const Eigen::VectorXd> x(s.f.data(), n);
-        hessian += weight * std::max(p * (1.0 - p), 1e-12) * x * x.transpose();
-      }
-    }
-    Eigen::VectorXd gradient = lossGradient(models, w);
-    for (int i = 0; i < n; ++i) {
-      if (free[i]) continue;
-      gradient[i] = 0.0;
-      hessian.row(i).setZero();
-      hessian.col(i).setZero();
-      hessian(i, i) = 1.0;
-    }
-    const Eigen::VectorXd delta = hessian.ldlt().solve(gradient);
-    const double before = logLoss(models, w);
-    double step = 1.0;
-    bool improved = false;
-    adb::EstimateWeights next = w;
-    for (int halving = 0; halving < 40 && !improved; ++halving, step *= 0.5) {
-      for (int i = 0; i < n; ++i) next[i] = w[i] - step * delta[i];
-      improved = logLoss(models, next) <= before;
-    }
-    if (!improved) return;  // no step lowers the loss: converged to rounding
-    w = next;
-    if (step * delta.norm() < 1e-10) return;
-  }
-}
-
-// Logistic regression whose evidence weights are >= 0 (more evidence never lowers the
-// estimate), by an active set: fit the free weights; hold the most negative evidence weight
-// at 0; release a held weight whose gradient says the loss falls as it grows (the KKT
-// condition); repeat until the set is stable. Collinear features (the union, the doubt and
-// the best open bound move together) are why one weight at a time.
-adb::EstimateWeights fit(const std::vector<ModelSamples>& models, bool evidenceSigns) {
-  constexpr int n = adb::kEstimateFeatures;
-  adb::EstimateWeights w{};
-  std::array<bool, n> free{};
-  free.fill(true);
-  for (int round = 0; round < 4 * n; ++round) {
-    newton(models, free, w);
-    int worst = -1;
-    for (int i = 0; i < n; ++i) {
-      if (evidenceSigns && free[i] && adb::kEvidenceFeature[i] && w[i] < 0.0 &&
-          (worst < 0 || w[i] < w[worst])) {
-        worst = i;
-      }
-    }
-    if (worst >= 0) {
-      free[worst] = false;
-      w[worst] = 0.0;
-      continue;
-    }
-    const Eigen::VectorXd gradient = lossGradient(models, w);
-    int release = -1;
-    for (int i = 0; i < n; ++i) {
-      if (!free[i] && gradient[i] < -1e-9 && (release < 0 || gradient[i] < gradient[release])) {
-        release = i;
-      }
-    }
-    if (release < 0) break;  // KKT holds: every held weight wants to stay at 0
-    free[release] = true;
-  }
-  return w;
-}
-
-// Expected calibration error of the answers the estimate gives (the more probable side, with
-// its probability as confidence), 10 equal bins.
-double ece(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
-  // The study's binning and ECE (studies/tradeoff/calibration.h), so that both tools' figures
-  // mean the same; 0 rather than NaN for no samples, as the table prints numbers.
-  std::vector<adb::tradeoff::JudgedAnswer> answers;
-  answers.reserve(samples.size());
-  for (const Sample* s : samples) {
-    const double p = adb::logisticEstimate(s->f, w);
-    const bool answer = p >= 0.5;
-    answers.push_back({answer ? p : 1.0 - p, answer == s->truth});
-  }
-  if (answers.empty()) return 0.0;
-  return adb::tradeoff::expectedCalibrationError(adb::tradeoff::reliabilityBins(answers));
-}
-
-double errorRate(const std::vector<const Sample*>& samples, const adb::EstimateWeights& w) {
-  int wrong = 0;
-  for (const Sample* s : samples) {
-    wrong += (adb::logisticEstimate(s->f, w) >= 0.5) != s->truth ? 1 : 0;
-  }
-  return samples.empty() ? 0.0 : 100.0 * wrong / static_cast<double>(samples.size());
-}
-
-// One line per model: pooled ECE, then ECE per budget (grouped by powers of 4) and at quality
-// stops; the error rate of the answers beside the pooled figure.
-void report(const ModelSamples& m, const adb::EstimateWeights& w) {
-  std::vector<const Sample*> all;
-  for (const Sample& s : m.samples) all.push_back(&s);
-  std::printf("| %s | %zu | %.3f | %.1f |", m.name.c_str(), all.size(), ece(all, w),
-              errorRate(all, w));
-  for (int lo = 0; lo < kCheckpoints; lo += 2) {
-    std::vector<const Sample*> group;
-    for (const Sample& s : m.samples) {
-      if (s.checkpoint >= lo && s.checkpoint < lo + 2) group.push_back(&s);
-    }
-    if (group.size() < 20) {
-      std::printf(" - |");
-    } else {
-      std::printf(" %.3f (%zu) |", ece(group, w), group.size());
-    }
-  }
+// One row per case: per budget "ECE / wrong % / wrong at >= 0.99 %".
+void printCheckTable(const char* title, const std::vector<CaseResult>& cases,
+                     const Estimate* fresh) {
+  std::printf("\n%s\n\n| case | set | poses |", title);
+  for (const CheckBudget& b : kCheckBudgets) std::printf(" %s |", b.label);
+  std::printf("\n|---|---|---|");
+  for (int b = 0; b < kCheckBudgetCount; ++b) std::printf("---|");
   std::printf("\n");
-}
-
-void printTable(const char* title, const std::vector<ModelSamples>& models,
-                const adb::EstimateWeights& w) {
-  std::printf("\n%s\n\n| model | samples | ECE | error %% |", title);
-  for (int lo = 0; lo < kCheckpoints; lo += 2) {
-    std::printf(" budget %d-%d |", 1 << lo, (1 << (lo + 2)) - 1);
+  for (const CaseResult& c : cases) {
+    std::printf("| %s | %s | %zu |", c.name.c_str(), c.fit ? "fit" : "check", c.check[0].size());
+    for (int b = 0; b < kCheckBudgetCount; ++b) {
+      const Judgement j = judge(judged(c.check[b], fresh));
+      std::printf(" %.3f / %.1f / %.2f |", j.ece, j.wrongPct, j.confidentWrongPct);
+    }
+    std::printf("\n");
   }
-  std::printf("\n|---|---|---|---|");
-  for (int lo = 0; lo < kCheckpoints; lo += 2) std::printf("---|");
-  std::printf("\n");
-  for (const ModelSamples& m : models) report(m, w);
+  std::printf("\n(each cell: ECE / wrong answers %% / wrong answers given with confidence >= "
+              "0.99, %% of all answers)\n");
 }
 
-// Every sample as CSV (set, model, checkpoint, features, truth): for looking at the data.
-void writeSamples(const std::string& path, const std::vector<ModelSamples>& fitSet,
-                  const std::vector<ModelSamples>& checkSet) {
+// The reliability diagrams of the library's answers: per case and budget, and pooled per set.
+void writeReliability(const std::string& path, const std::vector<CaseResult>& cases) {
   std::FILE* out = std::fopen(path.c_str(), "w");
   if (!out) {
     std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
     std::exit(1);
   }
-  std::fprintf(out, "set,model,checkpoint,f0,f1,f2,f3,f4,f5,f6,f7,truth\n");
-  for (const auto* set : {&fitSet, &checkSet}) {
-    for (const ModelSamples& m : *set) {
-      for (const Sample& s : m.samples) {
-        std::fprintf(out, "%s,%s,%d", set == &fitSet ? "fit" : "check", m.name.c_str(),
-                     s.checkpoint);
-        for (double f : s.f) std::fprintf(out, ",%.9g", f);
-        std::fprintf(out, ",%d\n", s.truth ? 1 : 0);
-      }
+  std::fprintf(out, "set,case,budget,ece,bin_lo,bin_hi,count,mean_confidence,fraction_right\n");
+  const auto write = [&](const char* set, const std::string& name, int b,
+                         const std::vector<adb::tradeoff::JudgedAnswer>& answers) {
+    if (answers.empty()) return;
+    const adb::tradeoff::ReliabilityBins bins = adb::tradeoff::reliabilityBins(answers);
+    const double ece = adb::tradeoff::expectedCalibrationError(bins);
+    for (const auto& bin : bins) {
+      if (bin.count == 0) continue;
+      std::fprintf(out, "%s,%s,%s,%.4f,%.1f,%.1f,%zu,%.4f,%.4f\n", set, name.c_str(),
+                   kCheckBudgets[b].label, ece, bin.lo, bin.hi, bin.count, bin.meanConfidence,
+                   bin.fractionRight);
+    }
+  };
+  for (int b = 0; b < kCheckBudgetCount; ++b) {
+    std::vector<adb::tradeoff::JudgedAnswer> pooled[2];
+    for (const CaseResult& c : cases) {
+      const auto answers = judged(c.check[b], nullptr);
+      write(c.fit ? "fit" : "check", c.name, b, answers);
+      pooled[c.fit ? 0 : 1].insert(pooled[c.fit ? 0 : 1].end(), answers.begin(), answers.end());
+    }
+    write("fit", "all fit", b, pooled[0]);
+    write("check", "all check", b, pooled[1]);
+  }
+  std::fclose(out);
+}
+
+// Every fit sample as CSV (set, case, checkpoint, features, truth): for looking at the data.
+void writeSamples(const std::string& path, const std::vector<CaseResult>& cases) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) {
+    std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
+    std::exit(1);
+  }
+  std::fprintf(out, "set,model,checkpoint");
+  for (int i = 0; i < adb::kEstimateFeatures; ++i) std::fprintf(out, ",f%d", i);
+  std::fprintf(out, ",truth\n");
+  for (const CaseResult& c : cases) {
+    for (const Sample& s : c.budget.samples) {
+      std::fprintf(out, "%s,%s,%d", c.fit ? "fit" : "check", c.name.c_str(), s.checkpoint);
+      for (double f : s.f) std::fprintf(out, ",%.9g", f);
+      std::fprintf(out, ",%d\n", s.truth ? 1 : 0);
     }
   }
   std::fclose(out);
@@ -335,27 +433,12 @@ void printWeights(const char* name, const adb::EstimateWeights& w) {
   std::printf("};\n");
 }
 
-// Quality stops per model: the fitted estimate's ECE and wrong answers (its labels say whether
-// the paper's answer is right, so its errors are those of the answer it gives: the paper's,
-// flipped where the estimate is below 0.5), against the paper's answer alone.
-void printQuality(const char* title, const std::vector<ModelSamples>& fitSet,
-                  const std::vector<ModelSamples>& checkSet, const adb::EstimateWeights& w) {
-  std::printf("\n%s\n\n| model | set | stops | ECE | wrong %% | paper's rule wrong %% |\n"
-              "|---|---|---|---|---|---|\n", title);
-  for (const auto* set : {&fitSet, &checkSet}) {
-    for (const ModelSamples& m : *set) {
-      std::vector<const Sample*> all;
-      int paperWrong = 0;
-      for (const Sample& s : m.samples) {
-        all.push_back(&s);
-        paperWrong += s.truth ? 0 : 1;  // the label: the paper's answer is right
-      }
-      const double paper =
-          all.empty() ? 0.0 : 100.0 * paperWrong / static_cast<double>(all.size());
-      std::printf("| %s | %s | %zu | %.3f | %.1f | %.1f |\n", m.name.c_str(),
-                  set == &fitSet ? "fit" : "check", all.size(), ece(all, w), errorRate(all, w),
-                  paper);
-    }
+void printMap(const MonotoneMap& map) {
+  std::printf("constexpr int kBudgetMapKnots = %zu;\n", map.x.size());
+  for (const auto* v : {&map.x, &map.y}) {
+    std::printf("constexpr double kBudgetMap%s[] = {", v == &map.x ? "X" : "Y");
+    for (std::size_t i = 0; i < v->size(); ++i) std::printf("%s%.6g", i ? ", " : "", (*v)[i]);
+    std::printf("};\n");
   }
 }
 
@@ -363,77 +446,225 @@ struct Options {
   std::size_t triangles = 20000;
   int rotations = 40;
   std::vector<std::string> meshes;
+  std::vector<std::pair<std::string, std::string>> pairs, inside;
   std::string samplesPath;
+  std::string outDir = "build/calibrate";
+  bool plots = true;
+  int knots = 20;
 };
+
+std::pair<std::string, std::string> twoFiles(const std::string& option,
+                                             const std::string& value) {
+  const std::size_t comma = value.find(',');
+  if (comma == std::string::npos) adb::tools::failValue(option, value, "expected FILE_A,FILE_B");
+  std::pair<std::string, std::string> files{value.substr(0, comma), value.substr(comma + 1)};
+  for (const std::string& f : {files.first, files.second}) {
+    // Checked here so that a typo fails before minutes of fitting.
+    if (!std::filesystem::is_regular_file(f)) adb::tools::failValue(option, f, "no such file");
+  }
+  return files;
+}
 
 void addOptions(CLI::App& app, Options& o) {
   app.description(
-      "adb-calibrate: fits the collision estimate's weights (adb/core/collision_estimate.h) on\n"
-      "the generated models (knot, pipes, gears, lock, torus, sphere, slivers at --triangles;\n"
-      "pipes at 400 triangles, the robot arm) and checks them on the arm in the room and the\n"
-      "--mesh files; prints the weights as C++ and the calibration error per model and budget\n"
-      "(docs/probability-model.md).");
+      "adb-calibrate: fits the collision estimate (adb/core/collision_estimate.h) on generated\n"
+      "models and pairs of models, checks it on pairs it never saw at the budgets users set,\n"
+      "prints the weights as C++ and the calibration per case and budget, and draws a\n"
+      "reliability diagram per budget (docs/probability-model.md).");
   constexpr long long kNoLimit = std::numeric_limits<long long>::max();
   adb::tools::addIntegerOption(app, "--triangles", o.triangles, 1000, kNoLimit,
-                              "about this many triangles per generated model");
+                               "about this many triangles per dense generated model");
   adb::tools::addIntegerOption(app, "--rotations", o.rotations, 1,
-                              std::numeric_limits<int>::max(),
-                              "random orientation pairs per distance (0.4 to 2.0 by 0.1)");
+                               std::numeric_limits<int>::max(),
+                               "random orientation pairs per distance (0.4 to 2.0 by 0.1); "
+                               "inside poses: 17 times as many in all");
   adb::tools::addValueOption(app, "--mesh", "FILE",
-                            "a mesh file to check the fit on (not fitted); repeatable",
-                            [&o](const std::string& path) {
-                              // Checked here so that a typo fails before minutes of fitting.
-                              if (!std::filesystem::is_regular_file(path)) {
-                                adb::tools::failValue("--mesh", path, "no such file");
-                              }
-                              o.meshes.push_back(path);
-                            });
+                             "check (not fit) on this mesh file against a copy of itself; "
+                             "repeatable",
+                             [&o](const std::string& path) {
+                               if (!std::filesystem::is_regular_file(path)) {
+                                 adb::tools::failValue("--mesh", path, "no such file");
+                               }
+                               o.meshes.push_back(path);
+                             });
+  adb::tools::addValueOption(app, "--pair", "A,B",
+                             "check on mesh file A against mesh file B at the distances; "
+                             "repeatable",
+                             [&o](const std::string& v) { o.pairs.push_back(twoFiles("--pair", v)); });
+  adb::tools::addValueOption(app, "--inside", "ENV,BODY",
+                             "check on mesh file BODY anywhere inside ENV's box (a robot in a "
+                             "room); repeatable",
+                             [&o](const std::string& v) {
+                               o.inside.push_back(twoFiles("--inside", v));
+                             });
   adb::tools::addValueOption(app, "--samples", "FILE",
-                            "write every sample (set, model, checkpoint, features, truth) "
-                            "as CSV",
-                            [&o](const std::string& path) { o.samplesPath = path; });
+                             "write every budget-stop sample (set, case, checkpoint, features, "
+                             "truth) as CSV",
+                             [&o](const std::string& path) { o.samplesPath = path; });
+  adb::tools::addValueOption(app, "--out", "DIR",
+                             "where reliability.csv and reliability.png go",
+                             [&o](const std::string& dir) { o.outDir = dir; }, o.outDir);
+  app.add_flag_callback("--no-plots", [&o] { o.plots = false; },
+                        "write reliability.csv only (no python3 run)")
+      ->disable_flag_override();
+}
+
+std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// A copy of `mesh` scaled by `factor` about the origin.
+adb::TriangleMesh scaled(const adb::TriangleMesh& mesh, double factor) {
+  std::vector<adb::Vec3> vertices = mesh.vertices();
+  for (adb::Vec3& v : vertices) v *= factor;
+  return adb::TriangleMesh(std::move(vertices), mesh.triangles());
+}
+
+std::vector<Case> casesOf(const Options& o) {
+  using adb::gen::makeFixedModel;
+  using adb::gen::makeModel;
+  std::vector<Case> cases;
+  const auto add = [&](std::string name, adb::TriangleMesh a, adb::TriangleMesh b,
+                       Placement placement, bool fit) {
+    cases.push_back(Case{std::move(name), std::move(a), std::move(b), placement, fit});
+  };
+  const auto copies = [&](const std::string& name, const adb::TriangleMesh& mesh, bool fit) {
+    add(name, mesh, mesh, Placement::Distances, fit);
+  };
+  for (const char* name : {"knot", "pipes", "gears", "lock", "torus", "sphere", "slivers"}) {
+    copies(name, makeModel(name, o.triangles), true);
+  }
+  // Meshes as they come (issue 37): few large triangles, as robot and environment models are.
+  copies("pipes-400", makeModel("pipes", 400), true);
+  copies("robot", makeFixedModel("robot"), true);
+  // Two different models (issue 43): a low-poly environment with a robot inside, dense against
+  // dense, slivers against dense, low-poly against low-poly.
+  add("room+robot", makeFixedModel("room"), makeFixedModel("robot"), Placement::Inside, true);
+  add("knot+gears", makeModel("knot", o.triangles), makeModel("gears", o.triangles / 4),
+      Placement::Distances, true);
+  add("slivers+lock", makeModel("slivers", o.triangles / 4), makeModel("lock", o.triangles),
+      Placement::Distances, true);
+  add("robot+pipes-400", makeFixedModel("robot"), makeModel("pipes", 400), Placement::Distances,
+      true);
+  // Bodies of different sizes: E[X] is counted at the coarser node's cells, so it reads lower
+  // for the same contact.
+  add("knot+gears/6", makeModel("knot", o.triangles),
+      scaled(makeModel("gears", o.triangles / 4), 1.0 / 6.0), Placement::Distances, true);
+  // Checked, never fitted: another body in the room, and a pair of shapes never paired.
+  add("room+pipes-400", makeFixedModel("room"), makeModel("pipes", 400), Placement::Inside,
+      false);
+  add("sphere+slivers", makeModel("sphere", o.triangles / 4), makeModel("slivers", o.triangles),
+      Placement::Distances, false);
+  for (const std::string& path : o.meshes) {
+    const adb::TriangleMesh mesh = adb::io::loadMesh(path);
+    copies(stem(path), mesh, false);
+  }
+  for (const auto& [pa, pb] : o.pairs) {
+    add(stem(pa) + "+" + stem(pb), adb::io::loadMesh(pa), adb::io::loadMesh(pb),
+        Placement::Distances, false);
+  }
+  for (const auto& [env, body] : o.inside) {
+    add(stem(env) + "+" + stem(body) + " (inside)", adb::io::loadMesh(env),
+        adb::io::loadMesh(body), Placement::Inside, false);
+  }
+  return cases;
+}
+
+// Quality stops per case: the fitted estimate's ECE and wrong answers against the paper's
+// answer alone (the label says whether the paper's answer is right).
+void printQuality(const std::vector<CaseResult>& cases, const adb::EstimateWeights& w) {
+  std::printf("\nQuality stops of the fit's settings (k_min reached, or the queue emptied by "
+              "pruning):\n\n| case | set | stops | ECE | wrong %% | paper's rule wrong %% |\n"
+              "|---|---|---|---|---|---|\n");
+  for (const CaseResult& c : cases) {
+    std::vector<adb::tradeoff::JudgedAnswer> answers;
+    int paperWrong = 0;
+    for (const Sample& s : c.quality.samples) {
+      const double right = adb::logisticEstimate(toArray<adb::kEstimateFeatures>(s.f), w);
+      answers.push_back({std::max(right, 1.0 - right), (right >= 0.5) == s.truth});
+      paperWrong += s.truth ? 0 : 1;
+    }
+    const Judgement j = judge(answers);
+    const double n = static_cast<double>(std::max<std::size_t>(1, answers.size()));
+    std::printf("| %s | %s | %zu | %.3f | %.1f | %.1f |\n", c.name.c_str(),
+                c.fit ? "fit" : "check", answers.size(), j.ece, j.wrongPct,
+                100.0 * paperWrong / n);
+  }
+}
+
+// Open pairs per case: ECE and wrong answers of the open-pair estimate (the answer "touch" where
+// it is >= 0.5), and of the priority key read as a probability (what Bullet read before), and
+// how often pairs accepted at 0.9 touch.
+void printOpenPairs(const std::vector<CaseResult>& cases, const adb::OpenPairWeights& w) {
+  std::printf("\nOpen pairs of budget stops at the defaults (labelled by brute force):\n\n"
+              "| case | set | pairs | touching %% | ECE | ECE of the key | accepted at 0.9 | "
+              "of them touching %% |\n|---|---|---|---|---|---|---|---|\n");
+  for (const CaseResult& c : cases) {
+    std::vector<adb::tradeoff::JudgedAnswer> fitted, key;
+    int touching = 0, accepted = 0, acceptedTouching = 0;
+    for (const Sample& s : c.openPairs.samples) {
+      const double p = adb::openPairProbability(toArray<adb::kOpenPairFeatures>(s.f), w);
+      const double k = s.f[adb::kOpenPairFeatures - 1];  // the key
+      fitted.push_back({std::max(p, 1.0 - p), (p >= 0.5) == s.truth});
+      key.push_back({std::max(k, 1.0 - k), (k >= 0.5) == s.truth});
+      touching += s.truth ? 1 : 0;
+      if (p >= 0.9) {
+        ++accepted;
+        acceptedTouching += s.truth ? 1 : 0;
+      }
+    }
+    const double n = static_cast<double>(std::max<std::size_t>(1, fitted.size()));
+    std::printf("| %s | %s | %zu | %.1f | %.3f | %.3f | %d | %.1f |\n", c.name.c_str(),
+                c.fit ? "fit" : "check", fitted.size(), 100.0 * touching / n, judge(fitted).ece,
+                judge(key).ece, accepted,
+                accepted ? 100.0 * acceptedTouching / accepted : 0.0);
+  }
 }
 
 int run(const Options& o) {
-  std::vector<ModelSamples> fitSet, fitQuality, checkSet, checkQuality;
-  const auto add = [](Collected c, std::vector<ModelSamples>& budget,
-                      std::vector<ModelSamples>& quality) {
-    budget.push_back(std::move(c.budget));
-    quality.push_back(std::move(c.quality));
-  };
-  const auto twoCopies = [&](const std::string& name, const adb::TriangleMesh& mesh) {
-    return collect(name, mesh, mesh, Placement::Distances, o.rotations);
-  };
-  for (const char* name : {"knot", "pipes", "gears", "lock", "torus", "sphere", "slivers"}) {
-    add(twoCopies(name, adb::gen::makeModel(name, o.triangles)), fitSet, fitQuality);
+  std::vector<CaseResult> results;
+  for (const Case& c : casesOf(o)) results.push_back(collect(c, o.rotations));
+  if (!o.samplesPath.empty()) writeSamples(o.samplesPath, results);
+  std::vector<CaseSamples> fitBudget, fitQuality;
+  for (const CaseResult& c : results) {
+    if (!c.fit) continue;
+    fitBudget.push_back(c.budget);
+    fitQuality.push_back(c.quality);
   }
-  // Meshes as they come (issue 37): few large triangles, as robot and environment models
-  // are, beside the dense ones (slivers above: a CAD cylinder of 100:1 triangles).
-  add(twoCopies("pipes-400", adb::gen::makeModel("pipes", 400)), fitSet, fitQuality);
-  add(twoCopies("robot", adb::gen::makeFixedModel("robot")), fitSet, fitQuality);
-  // Checked, not fitted: two different models, the arm anywhere in the room. Fitted, its
-  // budget stops took every evidence weight but the expected cells to 0 and doubled the
-  // calibration error of the others (knot 0.071 -> 0.144), its own staying at 0.21: the
-  // evidence does not tell a robot in a room apart (docs/probability-model.md, section 7).
-  add(collect("room+robot", adb::gen::makeFixedModel("room"), adb::gen::makeFixedModel("robot"),
-              Placement::Inside, o.rotations),
-      checkSet, checkQuality);
-  for (const std::string& path : o.meshes) {
-    add(twoCopies(path, adb::io::loadMesh(path)), checkSet, checkQuality);
+  const std::vector<bool> evidence(adb::kEvidenceFeature.begin(), adb::kEvidenceFeature.end());
+  const adb::calibrate::Weights budget = adb::calibrate::fitLogistic(fitBudget, evidence);
+  Estimate fresh;
+  fresh.budget = toArray<adb::kEstimateFeatures>(budget);
+  fresh.map = adb::calibrate::fitMonotone(fitBudget, budget, o.knots);
+  fresh.quality = toArray<adb::kEstimateFeatures>(adb::calibrate::fitLogistic(
+      fitQuality, std::vector<bool>(adb::kEstimateFeatures, false)));
+  printWeights("kBudgetWeights", fresh.budget);
+  printMap(fresh.map);
+  printWeights("kQualityWeights", fresh.quality);
+  // The open-pair estimate: a plain logistic model of whether an open pair's triangles meet.
+  std::vector<CaseSamples> fitPairs;
+  for (const CaseResult& c : results) {
+    if (c.fit) fitPairs.push_back(c.openPairs);
   }
-  if (!o.samplesPath.empty()) {
-    writeSamples(o.samplesPath, fitSet, checkSet);
+  const adb::OpenPairWeights pairWeights = toArray<adb::kOpenPairFeatures>(
+      adb::calibrate::fitLogistic(fitPairs, std::vector<bool>(adb::kOpenPairFeatures, false)));
+  std::printf("constexpr OpenPairWeights kOpenPairWeights{");
+  for (int i = 0; i < adb::kOpenPairFeatures; ++i) {
+    std::printf("%s%.6g", i ? ", " : "", pairWeights[i]);
   }
-  const adb::EstimateWeights budgetWeights = fit(fitSet, true);
-  const adb::EstimateWeights qualityWeights = fit(fitQuality, false);
-  printWeights("kBudgetWeights", budgetWeights);
-  printWeights("kQualityWeights", qualityWeights);
-  printTable("Budget stops, generated models (the fit set):", fitSet, budgetWeights);
-  if (!checkSet.empty()) {
-    printTable("Budget stops, check meshes (not fitted):", checkSet, budgetWeights);
+  std::printf("};\n");
+  printCheckTable("At QuerySettings' defaults, as the library answers (its compiled estimate):",
+                  results, nullptr);
+  printCheckTable("The same queries with the weights and map just fitted:", results, &fresh);
+  printQuality(results, fresh.quality);
+  printOpenPairs(results, pairWeights);
+  std::filesystem::create_directories(o.outDir);
+  const std::string csv = o.outDir + "/reliability.csv";
+  writeReliability(csv, results);
+  std::printf("\nreliability diagrams: %s", csv.c_str());
+  if (o.plots && adb::tradeoff::runPythonScript(ADB_CALIBRATE_PLOT_SCRIPT, o.outDir,
+                                                "adb-calibrate")) {
+    std::printf(", %s/reliability.png", o.outDir.c_str());
   }
-  printQuality("Quality stops (k_min reached, or the queue emptied by pruning):", fitQuality,
-               checkQuality, qualityWeights);
+  std::printf("\n");
   return 0;
 }
 
@@ -449,7 +680,7 @@ int main(int argc, char** argv) {
   }
   try {
     return run(o);
-  } catch (const std::exception& e) {  // a --mesh file assimp cannot read, or bad geometry
+  } catch (const std::exception& e) {  // a mesh file assimp cannot read, or bad geometry
     std::fprintf(stderr, "adb-calibrate: error: %s\n", e.what());
     return 1;
   }

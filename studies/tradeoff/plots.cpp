@@ -22,9 +22,12 @@ namespace adb::tradeoff {
 std::string plotScriptPath() { return ADB_TRADEOFF_PLOT_SCRIPT; }
 
 bool runPlotScript(const std::string& outDir) {
-  const std::string script = plotScriptPath();
+  return runPythonScript(plotScriptPath(), outDir, "adb-tradeoff");
+}
+
+bool runPythonScript(const std::string& script, const std::string& outDir, const char* tool) {
   if (!std::ifstream(script)) {
-    std::fprintf(stderr, "adb-tradeoff: warning: no plots: %s not found (the CSVs are written)\n",
+    std::fprintf(stderr, "%s: warning: no plots: %s not found (the CSVs are written)\n", tool,
                  script.c_str());
     return false;
   }
@@ -34,7 +37,7 @@ bool runPlotScript(const std::string& outDir) {
   pid_t pid = 0;
   const int spawnError = posix_spawnp(&pid, "python3", nullptr, nullptr, argv.data(), environ);
   if (spawnError != 0) {
-    std::fprintf(stderr, "adb-tradeoff: warning: no plots: cannot run python3: %s\n",
+    std::fprintf(stderr, "%s: warning: no plots: cannot run python3: %s\n", tool,
                  std::strerror(spawnError));
     return false;
   }
@@ -44,9 +47,9 @@ bool runPlotScript(const std::string& outDir) {
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::fprintf(stderr,
-                 "adb-tradeoff: warning: the plot script failed (python3 and matplotlib "
+                 "%s: warning: the plot script failed (python3 and matplotlib "
                  "installed?); the CSVs in %s are the result\n",
-                 outDir.c_str());
+                 tool, outDir.c_str());
     return false;
   }
   return true;

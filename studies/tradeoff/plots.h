@@ -13,4 +13,8 @@ std::string plotScriptPath();
 /// Runs `python3 SCRIPT DIR`; returns true on success, prints a warning on stderr otherwise.
 bool runPlotScript(const std::string& outDir);
 
+/// Runs `python3 script outDir` for any study (`tool` names it in warnings); the same
+/// contract.
+bool runPythonScript(const std::string& script, const std::string& outDir, const char* tool);
+
 }  // namespace adb::tradeoff
