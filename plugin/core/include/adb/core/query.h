@@ -171,9 +171,14 @@ struct QueryResult {
   /// estimate is the probability that the paper's answer is right). Exact mode cut before any
   /// hit answers "no" (the baseline of a traversal without a model).
   bool collides = false;
-  /// Estimated probability that `collides` is right, in [0, 1]: 1 when certain, else
-  /// max(P, 1 - P) (exact mode cut: 1 - P, below 0.5 where P > 0.5).
-  /// docs/probability-model.md measures how well calibrated it is.
+  /// Estimated probability that `collides` is right, in [0, 1]: 1 when certain (an exact hit,
+  /// or a query that left nothing open), else max(P, 1 - P) (exact mode cut: 1 - P, below 0.5
+  /// where P > 0.5). What it promises: among answers given with confidence c, about a share c
+  /// is right, at every budget, for pairs of models it was never fitted on (the expected
+  /// calibration error measured per model pair and budget opens docs/probability-model.md,
+  /// with the command that checks it on your meshes). A budget stop never claims 0.99 or
+  /// more: only a finished query is that sure. Where a budget stops a query after a handful
+  /// of node pairs, it says little more than the base rate of such overlaps.
   double confidence = 0.0;
   StopReason stop = StopReason::Completed;
   std::uint64_t nodePairs = 0;       ///< node pairs evaluated (box test, probability)
