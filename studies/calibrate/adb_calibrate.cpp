@@ -35,12 +35,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <limits>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -374,13 +374,16 @@ void printCheckTable(const char* title, const std::vector<CaseResult>& cases,
               "0.99, %% of all answers)\n");
 }
 
+// A file opened for writing; throws (main reports it) when it cannot be.
+std::FILE* openForWriting(const std::string& path) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) throw std::runtime_error("cannot write " + path);
+  return out;
+}
+
 // The reliability diagrams of the library's answers: per case and budget, and pooled per set.
 void writeReliability(const std::string& path, const std::vector<CaseResult>& cases) {
-  std::FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) {
-    std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
-    std::exit(1);
-  }
+  std::FILE* out = openForWriting(path);
   std::fprintf(out, "set,case,budget,ece,bin_lo,bin_hi,count,mean_confidence,fraction_right\n");
   const auto write = [&](const char* set, const std::string& name, int b,
                          const std::vector<adb::tradeoff::JudgedAnswer>& answers) {
@@ -409,11 +412,7 @@ void writeReliability(const std::string& path, const std::vector<CaseResult>& ca
 
 // Every fit sample as CSV (set, case, checkpoint, features, truth): for looking at the data.
 void writeSamples(const std::string& path, const std::vector<CaseResult>& cases) {
-  std::FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) {
-    std::fprintf(stderr, "adb-calibrate: cannot write %s\n", path.c_str());
-    std::exit(1);
-  }
+  std::FILE* out = openForWriting(path);
   std::fprintf(out, "set,model,checkpoint");
   for (int i = 0; i < adb::kEstimateFeatures; ++i) std::fprintf(out, ",f%d", i);
   std::fprintf(out, ",truth\n");
