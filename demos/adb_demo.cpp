@@ -79,6 +79,9 @@ void addOptions(CLI::App& app, Options& o) {
   app.add_flag("--no-keep-contacts", o.run.noKeepContacts,
                "pairs at rest collide every step instead of keeping their contacts (to "
                "measure what keeping them does)");
+  app.add_flag("--audit-contacts", o.run.auditContacts,
+               "audit each step's plausible contacts against the triangles (untimed; the "
+               "simulation is the same): steps.csv's audit_* columns, summary.json's audit");
   app.add_option("--fronts", o.fronts,
                  "mesh-mesh pairs keep the node pairs they evaluated and re-test what moved: "
                  "with a node-pair budget (default), always, or never")

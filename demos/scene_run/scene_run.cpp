@@ -48,6 +48,7 @@ void applyOverrides(const SceneRunOptions& o, Scene& s) {
   if (o.fronts) s.world.fronts = *o.fronts;
   if (o.threads) s.world.threads = *o.threads;
   if (o.noKeepContacts) s.world.keepRestingContacts = false;
+  if (o.auditContacts) s.world.auditContacts = true;
 }
 
 std::string budgetText(const scene::BudgetSpec& b) {

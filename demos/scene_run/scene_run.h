@@ -38,6 +38,7 @@ struct SceneRunOptions {
   std::optional<adb::FrameSettings::Fronts> fronts;
   std::optional<int> threads;
   bool noKeepContacts = false;  ///< resting pairs collide every step (an ablation)
+  bool auditContacts = false;   ///< audit plausible contacts (FrameSettings::auditContacts)
 };
 
 /// Runs the scene; the exit code: 0, 1 when a body was lost (out of world.bounds) at some

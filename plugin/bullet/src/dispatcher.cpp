@@ -28,6 +28,10 @@ void Dispatcher::lastMeshPairs(std::vector<MeshPairReport>& out) const {
   m_scheduler->meshPairs(out);
 }
 
+void Dispatcher::lastAuditedContacts(std::vector<AuditedContact>& out) const {
+  out = m_scheduler->auditedContacts();
+}
+
 void Dispatcher::setBadPoseCallback(std::function<void(const BadPose&)> callback) {
   m_scheduler->setBadPoseCallback(std::move(callback));
 }

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 
+#include "adb/bullet/mesh_shape.h"
+#include "conversions.h"
 #include "frame_statistics.h"
 #include "manifold_algorithm.h"
 #include "mesh_mesh_algorithm.h"
@@ -176,6 +178,39 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
   keepSkipped();
   m_stats.micros = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
   m_costs.updateMargin(m_stats.micros, settings.budgetMicros);
+  // After the step's contacts are written and its time measured: the audit changes neither.
+  m_audited.clear();
+  if (settings.auditContacts) auditContacts(settings);
+}
+
+void FrameScheduler::auditContacts(const FrameSettings& settings) {
+  const Clock::time_point start = Clock::now();
+  if (!m_audit) m_audit = std::make_unique<ContactAudit>();
+  ContactAuditStats& audit = m_stats.audit;
+  audit.on = true;
+  for (const DeferredPair& pair : m_pairs) {
+    // The pairs that got plausible contacts: written this step from a query the budget cut
+    // or that stopped on quality. A cut pair a time budget left no time to write is not
+    // written: it kept last step's contacts.
+    const bool plausible = isBudgetStop(pair.stop) || pair.stop == StopReason::QualityReached;
+    if (!pair.written || !plausible) continue;
+    const MeshMeshAlgorithm& algorithm = pair.meshMesh();
+    const auto& mesh0 = static_cast<const MeshShape&>(*pair.shape0);
+    const auto& mesh1 = static_cast<const MeshShape&>(*pair.shape1);
+    ContactAudit::PairEvidence evidence;
+    evidence.posed = PosedPair{&mesh0.tree(),       toPose(pair.transform0),
+                               &mesh1.tree(),       toPose(pair.transform1),
+                               mesh0.data().facing, mesh1.data().facing};
+    evidence.found = &algorithm.witnesses();
+    evidence.open = &algorithm.openPairs();
+    evidence.margin = algorithm.contactMargin();
+    evidence.threshold =
+        std::max(evidence.margin, static_cast<double>(algorithm.breakingThreshold()));
+    evidence.body0 = pair.object0;
+    evidence.body1 = pair.object1;
+    m_audit->audit(evidence, settings, audit, m_audited);
+  }
+  audit.micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
 
 std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {
@@ -231,8 +266,9 @@ void FrameScheduler::traverse(DeferredPair& pair, const QueryRequest& request,
     q.kMin = settings.kMin;
     q.pruneImprobable = false;  // complete means exact; cut leaves every open pair
     q.nodeWitnesses = false;    // the 64 witness slots are for triangle pairs
-    // A cut pair's open pairs become plausible contacts by their p (>= pAccept, softer the
-    // lower): Eq. 3 itself, not the table key's bucket (9 % wide).
+    // A cut pair's open pairs become plausible contacts by their calibrated probability
+    // (openPairProbability: >= pAccept, softer the lower), which reads each pair's key p:
+    // Eq. 3 itself, not the table key's bucket (9 % wide).
     q.adbKey = AdbKey::Eq3;
   } else {
     q.mode = QueryMode::Exact;

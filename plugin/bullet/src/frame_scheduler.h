@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "adb/bullet/frame_budget.h"
 #include "adb/core/query.h"
+#include "contact_audit.h"
 #include "contact_selection.h"
 #include "deferred_pair.h"
 #include "frame_cost_model.h"
@@ -57,6 +59,9 @@ class FrameScheduler {
   const FrameStats& stats() const { return m_stats; }
   /// The last step's mesh-mesh pairs (Dispatcher::lastMeshPairs).
   void meshPairs(std::vector<MeshPairReport>& out) const;
+  /// The last step's audited plausible contacts (FrameSettings::auditContacts; empty when
+  /// off).
+  const std::vector<AuditedContact>& auditedContacts() const { return m_audited; }
   /// Notes a body with an unusable pose for this step and, the first time this step, tells
   /// the callback.
   void noteBadPose(const btCollisionObject* body, PoseDefect defect);
@@ -132,6 +137,9 @@ class FrameScheduler {
   /// Microseconds since the step's pair work began (safe from any thread).
   double elapsedMicros() const;
   void writeContacts(const FrameSettings& settings);
+  /// FrameSettings::auditContacts: audits the pairs that got plausible contacts this step,
+  /// once everything is written and timed.
+  void auditContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
   /// Microseconds left of a time budget, less the margin and, with `holdBackWrites`, the
   /// expected cost of the mesh-mesh contacts still to write.
@@ -179,6 +187,10 @@ class FrameScheduler {
   // Bodies with unusable poses this step (reused: no allocation in steady state).
   std::vector<const btCollisionObject*> m_badBodies;
   std::function<void(const BadPose&)> m_badPoseCallback;
+  // The audit (FrameSettings::auditContacts): made on the first audited step, so that a
+  // world that never audits holds none of its buffers.
+  std::unique_ptr<ContactAudit> m_audit;
+  std::vector<AuditedContact> m_audited;
   std::uint32_t m_badNamed = 0;
   BadPose m_badNamedPoses[FrameStats::kNamedBadPoses];
 };

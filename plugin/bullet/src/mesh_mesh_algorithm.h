@@ -65,10 +65,13 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   /// The node pairs the last query left unresolved (empty when it completed).
   const std::vector<OpenPair>& openPairs() const { return m_traversal.openPairs(); }
 
- private:
-  /// The query's contact margin: 0, or for a pair with speculative contacts, Bullet's
-  /// threshold plus the speculative reach.
+  /// The triangle pairs the last query found (its exact witnesses).
+  const std::vector<Witness>& witnesses() const { return m_traversal.witnesses(); }
+  /// The queries' contact margin this step: 0, or for a pair with speculative contacts,
+  /// Bullet's threshold plus the speculative reach.
   double contactMargin() const;
+
+ private:
   // Resets the traversal for a new query; false (and an empty traversal) for a bad pose.
   bool start(const AdbTree& tree0, const btTransform& transform0, const AdbTree& tree1,
              const btTransform& transform1, const QuerySettings& settings);

@@ -13,10 +13,11 @@
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 
 #include <algorithm>
-#include <limits>
 #include <array>
 #include <cmath>
+#include <limits>
 
+#include "adb/core/open_pair_estimate.h"
 #include "adb/core/triangle_contact.h"
 #include "adb/core/triangle_distance.h"
 #include "conversions.h"
@@ -60,7 +61,8 @@ struct PlausibleContact {
   double depth;
 };
 
-PlausibleContact plausibleContact(const PosedPair& pair, const OpenPair& o, const Vec3& hint) {
+PlausibleContact plausibleContact(const PosedPair& pair, const PlausibleChoice& o,
+                                  const Vec3& hint) {
   const NodeSurface& sa = pair.a->surfaces()[o.a];
   const NodeSurface& sb = pair.b->surfaces()[o.b];
   const Vec3 ca = toWorldPoint(pair.poseA, *pair.a, sa.centroid);
@@ -402,22 +404,32 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
   return written;
 }
 
-std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<OpenPair>& open,
-                                   const FrameSettings& settings, const Vec3& hint,
-                                   ContactPoints& out) {
-  // The most probable pairs, kept sorted in a fixed buffer: no allocation per step.
+int selectPlausible(const AdbTree& a, const AdbTree& b, const std::vector<OpenPair>& open,
+                    const FrameSettings& settings, PlausibleChoices& chosen) {
+  // The most probable pairs, kept sorted in a fixed buffer: no allocation per step. Each
+  // pair's probability is worked out once: the estimate reads both nodes' statistics.
   const int limit = std::clamp(settings.maxPlausibleContacts, 0, kMaxPlausibleContacts);
-  std::array<OpenPair, kMaxPlausibleContacts> best;
   int count = 0;
   for (const OpenPair& o : open) {
     // The roots' pair is the whole of both meshes: too coarse to place a contact.
     if (o.a == 0 && o.b == 0) continue;
-    if (!(o.p >= settings.pAccept)) continue;
-    if (count == limit && (count == 0 || o.p <= best[count - 1].p)) continue;
+    if (limit == 0) break;
+    const double p = openPairProbability(o, a, b);
+    if (!(p >= settings.pAccept)) continue;
+    // Ties keep the order of `open`: the same contacts step after step for the same query.
+    if (count == limit && p <= chosen[count - 1].probability) continue;
     int i = count < limit ? count++ : count - 1;
-    for (; i > 0 && best[i - 1].p < o.p; --i) best[i] = best[i - 1];
-    best[i] = o;
+    for (; i > 0 && chosen[i - 1].probability < p; --i) chosen[i] = chosen[i - 1];
+    chosen[i] = PlausibleChoice{o.a, o.b, p};
   }
+  return count;
+}
+
+std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<OpenPair>& open,
+                                   const FrameSettings& settings, const Vec3& hint,
+                                   ContactPoints& out) {
+  PlausibleChoices best;
+  const int count = selectPlausible(*pair.a, *pair.b, open, settings, best);
   const double certain = 1.0 - settings.pAccept;
   for (int i = 0; i < count; ++i) {
     const PlausibleContact c = plausibleContact(pair, best[i], hint);
@@ -425,7 +437,7 @@ std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<Open
     point.featureA = plausibleFeature(best[i].a);
     point.featureB = plausibleFeature(best[i].b);
     if (settings.softenPlausible) {
-      const double p = std::clamp(static_cast<double>(best[i].p), 0.0, 1.0);
+      const double p = best[i].probability;  // in [0, 1] (openPairProbability)
       point.softened = true;
       point.erp = static_cast<btScalar>(kDefaultContactErp * p);
       // (1 - p) / (1 - pAccept) runs from 1 at the threshold to 0 when certain; guarded for

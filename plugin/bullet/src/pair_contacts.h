@@ -6,6 +6,7 @@
 
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -116,15 +117,31 @@ std::uint32_t addExactContacts(const PosedPair& pair, const std::vector<Witness>
                                const Vec3& hint, const ContactGroups& resting,
                                ContactPoints& out);
 
-/// Plausible contacts from the unresolved node pairs with probability >= settings.pAccept
-/// (the most probable first, at most settings.maxPlausibleContacts), softened by their
+/// Contacts a pair may get from plausible evidence at most: a bound for the fixed-size
+/// selection buffer (no allocation per step).
+constexpr int kMaxPlausibleContacts = 32;
+
+/// An unresolved node pair chosen to become a plausible contact, with its probability.
+struct PlausibleChoice {
+  std::uint32_t a = 0, b = 0;  ///< node indices in tree A and tree B
+  double probability = 0.0;    ///< openPairProbability (adb/core/open_pair_estimate.h)
+};
+using PlausibleChoices = std::array<PlausibleChoice, kMaxPlausibleContacts>;
+
+/// The unresolved node pairs `open` of a query between trees `a` and `b` that become
+/// plausible contacts, into `chosen`: those whose calibrated probability that a triangle
+/// below one node meets one below the other (openPairProbability, worked out once per open
+/// pair) is >= settings.pAccept, the most probable first (ties in the order of `open`), at
+/// most settings.maxPlausibleContacts, never the roots' pair. Returns how many. A function
+/// of its arguments only: the contact audit (contact_audit.h) calls it again to know which
+/// open pairs were accepted.
+int selectPlausible(const AdbTree& a, const AdbTree& b, const std::vector<OpenPair>& open,
+                    const FrameSettings& settings, PlausibleChoices& chosen);
+
+/// Plausible contacts from the open pairs selectPlausible chooses, softened by their
 /// probability when settings.softenPlausible. Returns the number of points added to `out`.
 std::uint32_t addPlausibleContacts(const PosedPair& pair, const std::vector<OpenPair>& open,
                                    const FrameSettings& settings, const Vec3& hint,
                                    ContactPoints& out);
-
-/// Contacts a pair may get from plausible evidence at most: a bound for the fixed-size
-/// selection buffer (no allocation per step).
-constexpr int kMaxPlausibleContacts = 32;
 
 }  // namespace adb::detail

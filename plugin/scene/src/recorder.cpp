@@ -24,6 +24,36 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
 }
 
+// Per step and in all, with the ghosts as a share of the accepted plausible contacts and the
+// missed as a share of the exact contacts of the audited pairs.
+Json auditJson(const RunSummary::Audit& a) {
+  const auto perStep = [&a](double total) { return total / a.steps; };
+  const auto share = [](double part, double whole) { return whole > 0 ? part / whole : 0.0; };
+  const double accepted = static_cast<double>(a.accepted), exact = static_cast<double>(a.exact);
+  return {{"steps", a.steps},
+          {"pairs", a.pairs},
+          {"accepted", a.accepted},
+          {"ghosts", a.ghosts},
+          {"far_ghosts", a.farGhosts},
+          {"exact", a.exact},
+          {"missed", a.missed},
+          {"missed_open", a.missedOpen},
+          {"capped_pairs", a.cappedPairs},
+          {"max_exact_pairs_per_pair", ContactAuditStats::kMaxExactPairs},
+          {"mean_pairs", perStep(static_cast<double>(a.pairs))},
+          {"mean_accepted", perStep(accepted)},
+          {"mean_ghosts", perStep(static_cast<double>(a.ghosts))},
+          {"max_ghosts", a.maxGhosts},
+          {"mean_exact", perStep(exact)},
+          {"mean_missed", perStep(static_cast<double>(a.missed))},
+          {"max_missed", a.maxMissed},
+          {"ghost_share", share(static_cast<double>(a.ghosts), accepted)},
+          {"far_ghost_share", share(static_cast<double>(a.farGhosts), accepted)},
+          {"missed_share", share(static_cast<double>(a.missed), exact)},
+          {"missed_open_share", share(static_cast<double>(a.missedOpen), exact)},
+          {"mean_ms", 1e-3 * perStep(a.micros)}};
+}
+
 const std::string& bodyName(const SceneWorld& world, std::uint32_t i) {
   return world.scene().bodies.at(i).name;
 }
@@ -35,6 +65,8 @@ std::array<StepCell, kStepColumns> stepCells(const StepRecord& r,
   const FrameStats& f = r.frame;
   auto count = [](const char* column, double value) { return StepCell{column, value, true}; };
   auto real = [](const char* column, double value) { return StepCell{column, value, false}; };
+  // The audit's columns hold -1 on a step not audited, as the probe's do.
+  auto audited = [&f](double value) { return f.audit.on ? value : -1.0; };
   return {{count("step", r.step), real("time", r.time), real("seconds", r.seconds),
            real("budget_use", r.budgetUse), count("mesh_pairs", r.meshPairs),
            count("cut_pairs", r.cutPairs), real("mean_confidence", r.meanConfidence),
@@ -59,7 +91,15 @@ std::array<StepCell, kStepColumns> stepCells(const StepRecord& r,
            real("out_of_bounds_relative", r.outOfBoundsRelative), count("threads", f.threads),
            real("parallel_us", f.parallelMicros), count("asleep", r.asleep),
            count("reused_pairs", f.reusedPairs),
-           count("other_reused_pairs", f.otherReusedPairs)}};
+           count("other_reused_pairs", f.otherReusedPairs),
+           count("audit_pairs", audited(f.audit.pairs)),
+           count("audit_accepted", audited(f.audit.accepted)),
+           count("audit_ghosts", audited(f.audit.ghosts)),
+           count("audit_far_ghosts", audited(f.audit.farGhosts)),
+           count("audit_exact", audited(static_cast<double>(f.audit.exact))),
+           count("audit_missed", audited(static_cast<double>(f.audit.missed))),
+           count("audit_missed_open", audited(static_cast<double>(f.audit.missedOpen))),
+           real("audit_us", audited(f.audit.micros))}};
 }
 
 std::string effectsName(const Effects& effects) {
@@ -177,6 +217,21 @@ void Recorder::record(const SceneWorld& world, const PenetrationReport* probe) {
   if (s.steps == 1) s.energyAtStart = r.energy;
   s.energyAtEnd = r.energy;
   s.events += r.events;
+  if (const ContactAuditStats& a = r.frame.audit; a.on) {
+    RunSummary::Audit& t = s.audit;
+    ++t.steps;
+    t.pairs += a.pairs;
+    t.accepted += a.accepted;
+    t.ghosts += a.ghosts;
+    t.farGhosts += a.farGhosts;
+    t.exact += a.exact;
+    t.missed += a.missed;
+    t.missedOpen += a.missedOpen;
+    t.cappedPairs += a.cappedPairs;
+    t.maxGhosts = std::max<std::uint64_t>(t.maxGhosts, a.ghosts);
+    t.maxMissed = std::max<std::uint64_t>(t.maxMissed, a.missed);
+    t.micros += a.micros;
+  }
   if (m_steps.is_open()) {
     writeRow(stepCells(r, probe));
   }
@@ -208,44 +263,45 @@ const RunSummary& Recorder::finish() {
   if (m_folder.empty()) return s;
   m_steps.flush();
   m_events.flush();
-  const Json j = {{"scene", s.scene},
-                  {"description", s.description},
-                  {"backend", s.backend},
-                  {"effects", s.effects},
-                  {"world", s.world},
-                  {"steps", s.steps},
-                  {"bodies", s.bodies},
-                  {"dynamic_bodies", s.dynamicBodies},
-                  {"triangles", s.triangles},
-                  {"build_seconds", s.buildSeconds},
-                  {"mean_step_ms", s.meanStepMillis},
-                  {"max_step_ms", s.maxStepMillis},
-                  {"p99_step_ms", s.p99StepMillis},
-                  {"mean_pair_ms", s.meanPairMillis},
-                  {"p99_pair_ms", s.p99PairMillis},
-                  {"exact_contacts", s.exactContacts},
-                  {"plausible_contacts", s.plausibleContacts},
-                  {"mean_budget_use", s.meanBudgetUse},
-                  {"mesh_pair_steps", s.meshPairSteps},
-                  {"cut_pair_steps", s.cutPairSteps},
-                  {"mean_confidence", s.meanConfidence},
-                  {"worst_confidence", s.worstConfidence},
-                  {"max_penetration", s.maxPenetration},
-                  {"mean_penetration", s.meanPenetration},
-                  {"max_probed_penetration", s.maxProbedPenetration},
-                  {"mean_probed_penetration", s.meanProbedPenetration},
-                  {"most_lost", s.mostLost},
-                  {"lost_at_end", s.lostAtEnd},
-                  {"max_out_of_bounds", s.maxOutOfBounds},
-                  {"max_out_of_bounds_relative", s.maxOutOfBoundsRelative},
-                  {"out_of_bounds_at_end", s.outOfBoundsAtEnd},
-                  {"at_rest_at_end", s.atRestAtEnd},
-                  {"asleep_at_end", s.asleepAtEnd},
-                  {"all_asleep_from", s.allAsleepFrom},
-                  {"kinetic_at_end", s.kineticAtEnd},
-                  {"energy_at_start", s.energyAtStart},
-                  {"energy_at_end", s.energyAtEnd},
-                  {"events", s.events}};
+  Json j = {{"scene", s.scene},
+            {"description", s.description},
+            {"backend", s.backend},
+            {"effects", s.effects},
+            {"world", s.world},
+            {"steps", s.steps},
+            {"bodies", s.bodies},
+            {"dynamic_bodies", s.dynamicBodies},
+            {"triangles", s.triangles},
+            {"build_seconds", s.buildSeconds},
+            {"mean_step_ms", s.meanStepMillis},
+            {"max_step_ms", s.maxStepMillis},
+            {"p99_step_ms", s.p99StepMillis},
+            {"mean_pair_ms", s.meanPairMillis},
+            {"p99_pair_ms", s.p99PairMillis},
+            {"exact_contacts", s.exactContacts},
+            {"plausible_contacts", s.plausibleContacts},
+            {"mean_budget_use", s.meanBudgetUse},
+            {"mesh_pair_steps", s.meshPairSteps},
+            {"cut_pair_steps", s.cutPairSteps},
+            {"mean_confidence", s.meanConfidence},
+            {"worst_confidence", s.worstConfidence},
+            {"max_penetration", s.maxPenetration},
+            {"mean_penetration", s.meanPenetration},
+            {"max_probed_penetration", s.maxProbedPenetration},
+            {"mean_probed_penetration", s.meanProbedPenetration},
+            {"most_lost", s.mostLost},
+            {"lost_at_end", s.lostAtEnd},
+            {"max_out_of_bounds", s.maxOutOfBounds},
+            {"max_out_of_bounds_relative", s.maxOutOfBoundsRelative},
+            {"out_of_bounds_at_end", s.outOfBoundsAtEnd},
+            {"at_rest_at_end", s.atRestAtEnd},
+            {"asleep_at_end", s.asleepAtEnd},
+            {"all_asleep_from", s.allAsleepFrom},
+            {"kinetic_at_end", s.kineticAtEnd},
+            {"energy_at_start", s.energyAtStart},
+            {"energy_at_end", s.energyAtEnd},
+            {"events", s.events}};
+  if (s.audit.steps > 0) j["audit"] = auditJson(s.audit);
   const std::filesystem::path file = m_folder / "summary.json";
   std::ofstream out(file);
   out << j.dump(2) << '\n';

@@ -202,6 +202,7 @@ WorldSpec readWorld(const Json& j, const std::string& file) {
   w.pAccept = o.number("p_accept", w.pAccept, 0.0, 1.0);
   w.threads = static_cast<int>(o.integer("threads", w.threads, 0, kMaxThreads));
   w.keepRestingContacts = o.boolean("keep_resting_contacts", w.keepRestingContacts);
+  w.auditContacts = o.boolean("audit_contacts", w.auditContacts);
   const std::string fronts = o.string("fronts", kFrontsNames[0]);
   if (const std::optional<FrameSettings::Fronts> named = frontsNamed(fronts)) {
     w.fronts = *named;

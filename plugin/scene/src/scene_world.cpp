@@ -71,6 +71,7 @@ FrameSettings frameSettings(const Scene& scene, Backend backend) {
   f.fronts = w.fronts;
   f.threads = w.threads;
   f.keepRestingContacts = w.keepRestingContacts;
+  f.auditContacts = w.auditContacts;
   f.softenPlausible = scene.effects.softContacts;
   return f;
 }
@@ -471,6 +472,8 @@ const StepRecord& SceneWorld::step() {
     detail::measureContacts(*s.dispatcher, s.adbDispatcher, s.pairReports, s.record, s.contacts,
                             s.cutPairs);
     if (s.report.budget) s.record.budgetUse = budgetUse(s.scene.world.budget, s.record.frame);
+    // The contact audit is a measurement, not part of the step (it ran inside it).
+    s.record.seconds = std::max(0.0, s.record.seconds - 1e-6 * s.record.frame.audit.micros);
   }
   if (s.dynamics) detail::measureDynamics(*s.dynamics, s.scene.world.gravity, s.record);
   s.measureBounds(s.record);

@@ -45,6 +45,10 @@ class Dispatcher : public btCollisionDispatcher {
   /// nothing is allocated once it is large enough). A pair inside a compound names the
   /// compound's body.
   void lastMeshPairs(std::vector<MeshPairReport>& out) const;
+  /// With FrameSettings::auditContacts, the last step's accepted plausible contacts as the
+  /// audit judged them, into `out` (cleared first; empty with the audit off): which were
+  /// ghosts, with their node pairs and poses to check them by.
+  void lastAuditedContacts(std::vector<AuditedContact>& out) const;
 
   /// Called once per step for each body whose pose adb cannot use (NaN, a rotation that is
   /// not orthonormal beyond btScalar's rounding, beyond 1e150) or whose velocities are not

@@ -21,8 +21,9 @@
 // points (adb/core/box_query.h, forEachDeepestTriangleNear). A mesh-mesh pair is decided
 // when its traversal completed (exact contacts, sampled per contact region) or reached the
 // quality target (kMin node pairs above pMin, which needs the paper's best-first traversal;
-// otherwise pairs run depth first). Pairs the budget cut get plausible
-// contacts from their unresolved node pairs with probability >= pAccept. A time budget holds
+// otherwise pairs run depth first). Pairs the budget cut get plausible contacts from their
+// unresolved node pairs whose calibrated probability of holding a contact
+// (adb::openPairProbability) is >= pAccept. A time budget holds
 // back the contact writing still to come and a margin that follows the overshoot's peaks.
 // With a node-pair budget, a step is reproducible bit for bit. Meshes inside
 // btCompoundShapes are scheduled like any other.
@@ -34,7 +35,8 @@
 #include <optional>
 #include <string>
 
-#include "adb/core/query.h"  // PoseDefect
+#include "adb/core/query.h"  // PoseDefect, Pose
+#include "adb/core/tree.h"
 
 class btCollisionObject;
 
@@ -56,11 +58,15 @@ struct FrameSettings {
   /// stops on quality: pairs run depth first (4x cheaper for a pile's contacts) and are
   /// refined towards exact contacts as far as the budget allows, which resting contact needs.
   int kMin = 0;
-  /// An unresolved node pair becomes a plausible contact when its probability is >= pAccept.
+  /// An unresolved node pair becomes a plausible contact when its calibrated probability
+  /// that a triangle below one node meets a triangle below the other
+  /// (adb::openPairProbability, adb/core/open_pair_estimate.h) is >= pAccept. Not the
+  /// traversal's priority key (OpenPair::p): that orders the traversal and is no probability.
   double pAccept = 0.9;
   /// Plausible contacts per pair at most (the most probable first; the manifold keeps 4).
   int maxPlausibleContacts = 8;
-  /// Soften plausible contacts by their probability p through the per-point ERP (p times
+  /// Soften plausible contacts by their probability p (as for pAccept) through the per-point
+  /// ERP (p times
   /// Bullet's default 0.8) and CFM (softCfm * (1 - p) / (1 - pAccept)): an uncertain contact
   /// pushes less hard. Exact contacts are never softened.
   bool softenPlausible = true;
@@ -92,6 +98,13 @@ struct FrameSettings {
   /// what lets a resting pile settle, sleep and cost little. Off only to measure what it
   /// does (docs/bullet-results.md, "Piles that fall asleep").
   bool keepRestingContacts = true;
+  /// Audit each step's plausible contacts against the triangles (FrameStats::audit, and
+  /// Dispatcher::lastAuditedContacts), after the step's contacts are written, at the poses
+  /// they were made for; it writes nothing to the world, so the simulation is the same with
+  /// it on (its time is FrameStats::audit.micros, not part of FrameStats::micros). Off by
+  /// default: a measurement, it costs an exact query per cut pair and a brute-force test of
+  /// every accepted plausible contact.
+  bool auditContacts = false;
 };
 
 /// The largest FrameSettings::threads accepted.
@@ -124,13 +137,66 @@ struct MeshPairReport {
   enum class Outcome {
     Exact,    ///< traversal completed: exact contacts
     Quality,  ///< stopped at the quality target (kMin node pairs above pMin)
-    Cut,      ///< cut by the budget: plausible contacts where p >= pAccept
+    Cut,      ///< cut by the budget: plausible contacts where probable (pAccept)
   };
   const btCollisionObject* body0 = nullptr;
   const btCollisionObject* body1 = nullptr;
   Outcome outcome = Outcome::Exact;
   double confidence = 1.0;    ///< see FrameStats::meanConfidence
   double completeness = 1.0;  ///< see FrameStats::meanCompleteness
+};
+
+/// The audit of a step's plausible contacts (FrameSettings::auditContacts), over the
+/// mesh-mesh pairs whose contacts were made from a query the budget cut (or that stopped at
+/// the quality target): the pairs that got plausible contacts. Judged at the poses the
+/// contacts were made for, against the triangles: an exact query of each pair (no budget,
+/// every intersecting triangle pair, the pair's contact margin) and a brute-force test of
+/// the triangles below each accepted plausible contact's two nodes.
+struct ContactAuditStats {
+  /// Triangle pairs an audit's exact query keeps per pair at most (QuerySettings::
+  /// maxWitnesses): `exact` and `missed` count those; a pair with more counts in
+  /// `cappedPairs`.
+  static constexpr std::uint32_t kMaxExactPairs = 4096;
+  bool on = false;               ///< the step was audited
+  std::uint32_t pairs = 0;       ///< pairs audited
+  /// Their accepted plausible contacts (the open pairs chosen, before the manifold's
+  /// reduction): FrameStats::plausibleContacts of these pairs.
+  std::uint32_t accepted = 0;
+  /// Of those, ghosts: no triangle below one node comes within the pair's contact margin of
+  /// a triangle below the other (for a pair without speculative contacts: none intersects),
+  /// by brute force.
+  std::uint32_t ghosts = 0;
+  /// Of the ghosts, those whose triangles do not come within Bullet's contact breaking
+  /// threshold of the pair's manifold either (nor the contact margin, if larger).
+  std::uint32_t farGhosts = 0;
+  /// Triangle pairs the exact query finds (intersecting, or within the contact margin), at
+  /// most kMaxExactPairs per pair.
+  std::uint64_t exact = 0;
+  /// Of those, missed: neither found by the cut query (its exact witnesses) nor below an
+  /// accepted plausible contact (its node pair holds both triangles).
+  std::uint64_t missed = 0;
+  /// Of the missed, those below an open pair the cut left unaccepted; the others lay where
+  /// the cut query had been and its contact sampling (at most 4 triangle pairs per contact
+  /// region, 64 per pair) passed them over.
+  std::uint64_t missedOpen = 0;
+  std::uint32_t cappedPairs = 0;  ///< pairs whose exact query found more than kMaxExactPairs
+  double micros = 0.0;            ///< wall clock of the audit (not in FrameStats::micros)
+};
+
+/// One accepted plausible contact of the last step as the audit judged it
+/// (Dispatcher::lastAuditedContacts): its node pair, the posed trees, and the verdicts.
+struct AuditedContact {
+  const btCollisionObject* body0 = nullptr;
+  const btCollisionObject* body1 = nullptr;
+  const AdbTree* treeA = nullptr;  ///< body 0's mesh's tree (a compound's child's)
+  const AdbTree* treeB = nullptr;
+  Pose poseA, poseB;               ///< the trees' poses the contact was made for
+  std::uint32_t nodeA = 0, nodeB = 0;
+  double probability = 0.0;        ///< openPairProbability
+  double margin = 0.0;             ///< the pair's contact margin (0 without speculation)
+  double threshold = 0.0;          ///< max(margin, the manifold's breaking threshold)
+  bool ghost = false;              ///< nothing within `margin` (ContactAuditStats::ghosts)
+  bool farGhost = false;           ///< nothing within `threshold` either
 };
 
 /// What the last step did with the adb pairs it met.
@@ -166,7 +232,7 @@ struct FrameStats {
   std::uint64_t fromScratchNodePairs = 0;
   std::uint32_t exactPairs = 0;     ///< decided exactly: traversal completed
   std::uint32_t qualityPairs = 0;   ///< stopped at the quality target (k_min above p_min)
-  std::uint32_t cutPairs = 0;       ///< cut by the budget: plausible contacts where p >= pAccept
+  std::uint32_t cutPairs = 0;       ///< cut by the budget: plausible contacts (pAccept)
   /// Of those, the ones a time budget left no time to write: they keep last step's contacts,
   /// refreshed for the new poses.
   std::uint32_t lateKeptPairs = 0;
@@ -205,6 +271,8 @@ struct FrameStats {
   /// parallelMicros.
   static constexpr int kReportedThreads = 64;
   std::array<double, kReportedThreads> threadBusyMicros{};
+  /// With FrameSettings::auditContacts, the audit of the step's plausible contacts.
+  ContactAuditStats audit;
 };
 
 }  // namespace adb

@@ -62,6 +62,15 @@ struct RunSummary {
   double energyAtStart = 0.0;        ///< after the first step
   double energyAtEnd = 0.0;
   std::uint64_t events = 0;
+  /// The contact audit (adb::FrameSettings::auditContacts, adb::ContactAuditStats) summed
+  /// over the audited steps, and the worst step's ghosts and misses; steps 0: not audited.
+  struct Audit {
+    int steps = 0;
+    std::uint64_t pairs = 0, accepted = 0, ghosts = 0, farGhosts = 0;
+    std::uint64_t exact = 0, missed = 0, missedOpen = 0, cappedPairs = 0;
+    std::uint64_t maxGhosts = 0, maxMissed = 0;
+    double micros = 0.0;
+  } audit;
 };
 
 std::string effectsName(const Effects& effects);
@@ -72,7 +81,7 @@ struct StepCell {
   double value;
   bool integer;  ///< a count, written without a fraction
 };
-inline constexpr std::size_t kStepColumns = 39;
+inline constexpr std::size_t kStepColumns = 47;
 /// A step's row of steps.csv, column by column, in the file's order (docs/scenes.md says what
 /// each means): the one place the columns are listed, for the file and for the Python
 /// module's World.stats(). `probe`: the step's penetration from the geometry, if measured

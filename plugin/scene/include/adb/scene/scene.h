@@ -38,6 +38,8 @@ struct WorldSpec {
   int threads = 1;
   /// Pairs at rest keep their contacts (adb::FrameSettings::keepRestingContacts).
   bool keepRestingContacts = true;
+  /// Audit plausible contacts against exact ones (adb::FrameSettings::auditContacts).
+  bool auditContacts = false;
   /// Where dynamic bodies belong (a bin's inside, say): a body whose centre is outside it by
   /// more than a quarter of its size (its box's diagonal) is lost. None: a body is lost when
   /// its centre falls below the lowest static body by more than its size.
