@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "adb/core/collision_estimate.h"
+#include "adb/core/node_triangles.h"
 #include "adb/core/open_pair_estimate.h"
 #include "adb/core/triangle_test.h"
 #include "adb/core/query.h"
@@ -130,17 +131,6 @@ struct Case {
   bool fit = false;
 };
 
-// The tree-order triangles below a node: a contiguous range, from its leftmost leaf's first
-// to its rightmost leaf's last.
-std::pair<std::uint32_t, std::uint32_t> trianglesBelow(const adb::AdbTree& tree,
-                                                       std::uint32_t node) {
-  std::uint32_t left = node, right = node;
-  while (!tree.nodes()[left].isLeaf()) left = tree.nodes()[left].firstChild();
-  while (!tree.nodes()[right].isLeaf()) right = tree.nodes()[right].firstChild() + 1;
-  const adb::Node& last = tree.nodes()[right];
-  return {tree.nodes()[left].firstTriangle(), last.firstTriangle() + last.triangleCount()};
-}
-
 // The triangles of a tree-order range posed in the world, each with its box.
 struct PosedTriangles {
   std::vector<std::array<adb::Vec3, 3>> corners;
@@ -168,7 +158,7 @@ PosedTriangles posed(const adb::AdbTree& tree, const adb::Pose& pose,
 constexpr std::uint64_t kMaxLabelTests = 1u << 20;
 std::optional<bool> nodesTouch(const adb::AdbTree& ta, const adb::Pose& pa, std::uint32_t a,
                                const adb::AdbTree& tb, const adb::Pose& pb, std::uint32_t b) {
-  const auto ra = trianglesBelow(ta, a), rb = trianglesBelow(tb, b);
+  const auto ra = adb::trianglesBelow(ta, a), rb = adb::trianglesBelow(tb, b);
   if (std::uint64_t{ra.second - ra.first} * (rb.second - rb.first) > kMaxLabelTests) {
     return std::nullopt;
   }

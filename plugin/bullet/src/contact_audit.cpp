@@ -1,6 +1,8 @@
 // ContactAudit: a step's plausible contacts judged against the triangles (contact_audit.h).
 #include "contact_audit.h"
 
+#include "adb/core/node_triangles.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -25,15 +27,6 @@ bool boxesNear(const Vec3& loX, const Vec3& hiX, const Vec3& loY, const Vec3& hi
 }
 
 }  // namespace
-
-std::pair<std::uint32_t, std::uint32_t> trianglesBelow(const AdbTree& tree, std::uint32_t node) {
-  const auto& nodes = tree.nodes();
-  std::uint32_t left = node, right = node;
-  while (!nodes[left].isLeaf()) left = nodes[left].firstChild();
-  while (!nodes[right].isLeaf()) right = nodes[right].firstChild() + 1;
-  return {nodes[left].firstTriangle(),
-          nodes[right].firstTriangle() + nodes[right].triangleCount()};
-}
 
 void ContactAudit::poseTriangles(const AdbTree& tree, const Pose& pose, std::uint32_t node,
                                  std::vector<WorldTriangle>& out, Vec3& lo, Vec3& hi) {

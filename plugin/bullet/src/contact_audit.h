@@ -24,11 +24,6 @@ class btCollisionObject;
 
 namespace adb::detail {
 
-/// The tree-order triangles below `node`: [first, second). A subtree's triangles are
-/// contiguous in tree order (its leaves' ranges follow each other), so its leftmost and
-/// rightmost leaves bound them.
-std::pair<std::uint32_t, std::uint32_t> trianglesBelow(const AdbTree& tree, std::uint32_t node);
-
 /// How near the triangles below two posed nodes come to each other.
 struct NodeProximity {
   bool withinMargin = false;  ///< some pair intersects or lies within the margin
