@@ -43,6 +43,11 @@ std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) {
 // runs regardless: two kept steps hold a resting body; a budget smaller than one pair
 // overruns by that pair every third step rather than letting the body fall.
 constexpr std::uint64_t kMaxSkippedSteps = 2;
+// Steps after the budget was last reached during which the policy keeps economising (the
+// estimates decide shares, starved descents and resting pairs): a pile whose need hovers
+// about the budget does not switch policy every other step; a budget never reached never
+// economises, and gives the unbudgeted simulation.
+constexpr std::uint64_t kReachedSteps = 60;
 // A quality target needs the paper's best-first traversal; contacts alone are found faster
 // depth first (docs/bullet-budget.md).
 bool bestFirst(const FrameSettings& s) { return s.kMin > 0; }
@@ -170,12 +175,15 @@ void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& 
     return rx != ry ? rx < ry : x.sequence < y.sequence;
   });
   if (settings.keepRestingContacts) keepRestingContacts();
+  m_reachedLately = !unbudgeted(settings) && m_lastReached != 0 &&
+                    m_step - m_lastReached <= kReachedSteps;
   m_binding = binding(settings);
   gatherWholes(settings);
   firstPass(settings);
   refine(settings);
   writeContacts(settings);
   keepSkipped();
+  if (reachedBudget(settings)) m_lastReached = m_step;
   m_stats.micros = std::chrono::duration<double, std::micro>(Clock::now() - m_start).count();
   m_costs.updateMargin(m_stats.micros, settings.budgetMicros);
   // After the step's contacts are written and its time measured: the audit changes neither.
@@ -235,17 +243,33 @@ double FrameScheduler::microsLeft(const FrameSettings& s, bool holdBackWrites) c
   return std::max(0.0, s.budgetMicros - m_costs.margin(s.budgetMicros) - contacts - used);
 }
 
+// A query's time cap among `waiting` pairs of a time budget with `micros` left: an even
+// share of the threads' time until the budget was reached lately (a cap, not a grant: a
+// query within it runs as without a budget), then all that is left (the grant shares it).
+double FrameScheduler::timeShare(double micros, std::uint64_t waiting) const {
+  if (std::isinf(micros) || m_reachedLately || waiting == 0) return micros;
+  return micros * static_cast<double>(m_pool.threads()) / static_cast<double>(waiting);
+}
+
+bool FrameScheduler::reachedBudget(const FrameSettings& settings) const {
+  if (unbudgeted(settings)) return false;
+  return m_stats.cutPairs > 0 || m_stats.lateKeptPairs > 0 || m_stats.otherKeptPairs > 0;
+}
+
 // A pair's even share of what is left, in node pairs. A time budget is shared as node pairs
 // through the measured cost of one: a query given a tiny time share would overshoot it by a
 // whole clock interval (the traversal reads the clock every 64 units of work), and hundreds
 // of pairs would overshoot the step by hundreds of intervals. The pool's threads work
 // through node pairs side by side, so a time budget covers as many times more of them
-// (what one query may take stays capped by the round's deadline).
+// (what one query may take stays capped by the round's deadline). Only once the budget was
+// reached lately: until then a time budget is no grant, only each query's time cap
+// (timeShare), and a budget the step never reaches leaves every query as it would run
+// without one.
 std::uint64_t FrameScheduler::share(const FrameSettings& s, std::uint64_t waiting,
                                     std::uint64_t reserved, double micros) const {
   std::uint64_t left = nodePairsLeft(s);
   if (left != kUnlimited) left = (left > reserved ? left - reserved : 0) / waiting;
-  if (!std::isinf(micros)) {
+  if (!std::isinf(micros) && m_reachedLately) {
     const double lanes = static_cast<double>(m_pool.threads());
     const double byTime =
         (micros * lanes / m_costs.microsPerNodePair() - static_cast<double>(reserved)) /
@@ -327,10 +351,13 @@ std::uint64_t FrameScheduler::account(DeferredPair& pair, const QueryRequest& re
   return work.nodePairs + work.triangleTests + work.pairsPopped;
 }
 
-// Whether the budget is too small for every pair's expected cost: only then may a resting
-// pair keep its contacts (a budget never reached must not change the simulation).
+// Whether the budget is too small for every pair's expected cost, once it has been reached
+// lately: only then may a resting pair keep its contacts. The estimates alone (each pair's
+// last cost and a quarter more, times the measured time per node pair) bind a budget the
+// step would not reach: 9 bodies on a mesh ground under a 2 ms budget they never used sank
+// into it and stayed awake where the same world without a budget slept.
 bool FrameScheduler::binding(const FrameSettings& settings) const {
-  if (unbudgeted(settings)) return false;
+  if (!m_reachedLately) return false;
   std::uint64_t units = 0;
   double micros = 0.0;
   // Pairs written already kept their contacts: they cost nothing.
@@ -425,11 +452,14 @@ void FrameScheduler::firstQueries(bool group, std::uint64_t waiting,
         continue;
       }
       const std::uint64_t grant = std::min(wanted, share(settings, waiting, reserved, micros));
+      // A query cut by its grant or its time share is resumed by the refinement where it
+      // stopped, and ends as it would have uncut. Only a budget reached lately makes a
+      // starved pair descend otherwise (deepest overlaps first).
+      const bool starved = grant < wanted && m_reachedLately;
       reserved = saturatingAdd(reserved, grant);
-      --waiting;
       m_batch.push_back(static_cast<std::uint32_t>(next));
-      // The time cap is set as the query starts (runRound): the share is in the grant.
-      m_requests.push_back(QueryRequest::fresh(grant, micros, grant < wanted));
+      m_requests.push_back(QueryRequest::fresh(grant, timeShare(micros, waiting), starved));
+      --waiting;
     }
     runRound(settings);
     for (std::size_t k = 0; k < m_batch.size(); ++k) {
@@ -456,7 +486,7 @@ void FrameScheduler::runRound(const FrameSettings& settings) {
   auto job = [&](std::size_t k) {
     QueryRequest& request = m_requests[k];
     if (!request.whole && !std::isinf(m_roundDeadline)) {
-      request.micros = std::max(0.0, m_roundDeadline - elapsedMicros());
+      request.micros = std::clamp(m_roundDeadline - elapsedMicros(), 0.0, request.micros);
     }
     DeferredPair& pair = m_pairs[m_batch[k]];
     traverse(pair, request, settings);
@@ -749,6 +779,7 @@ void FrameScheduler::refine(const FrameSettings& settings) {
   // before any of them runs, queried on the pool, counted in that order.
   while (!m_order.empty()) {
     beginRound(settings);
+    m_deferred.clear();
     const double micros = microsLeft(settings);
     std::uint64_t reserved = 0;
     while (!m_order.empty() && m_batch.size() < kRoundPairs) {
@@ -764,12 +795,18 @@ void FrameScheduler::refine(const FrameSettings& settings) {
         // The depth-first traversal resumes where it stopped: nothing is redone.
         // A grant smaller than one expansion could only be used by overshooting the step.
         const std::uint64_t grant = std::min(more, left);
-        if (grant < kNodePairsPerExpansion || !(micros > 0.0)) continue;
+        if (grant < kNodePairsPerExpansion || !(micros > 0.0)) {
+          deferOrDrop(index, reserved);
+          continue;
+        }
         request = QueryRequest::resumed(grant, micros);
       } else {
         // The best-first one starts again with the larger grant.
         const std::uint64_t grant = std::min(pair.grant + more, left);
-        if (grant <= pair.grant || !(micros > 0.0)) continue;
+        if (grant <= pair.grant || !(micros > 0.0)) {
+          deferOrDrop(index, reserved);
+          continue;
+        }
         request = QueryRequest::fresh(grant, micros);
       }
       reserved = saturatingAdd(reserved, request.grant);
@@ -788,8 +825,21 @@ void FrameScheduler::refine(const FrameSettings& settings) {
         std::push_heap(m_order.begin(), m_order.end(), moreCertain);
       }
     }
+    // What the round's queries left unused is for the pairs it had no room for.
+    for (std::uint32_t index : m_deferred) {
+      m_order.push_back(index);
+      std::push_heap(m_order.begin(), m_order.end(), moreCertain);
+    }
   }
   runWholesLeft(settings, true);
+}
+
+// A pair the round has no grant for: while the round's earlier grants hold budget they may
+// not use, it waits for the next round; with nothing reserved, nothing is left for it. Dropped
+// at once, pairs behind a round's reservations were cut with a tenth of a node-pair budget
+// unspent (FrameBudget.ANodePairBudgetJustAboveTheNeedChangesNothing).
+void FrameScheduler::deferOrDrop(std::uint32_t index, std::uint64_t reserved) {
+  if (reserved > 0) m_deferred.push_back(index);
 }
 
 void FrameScheduler::runWholesLeft(const FrameSettings& settings, bool resting) {

@@ -77,7 +77,11 @@ class FrameScheduler {
 
   void firstPass(const FrameSettings& settings);
   bool binding(const FrameSettings& settings) const;
+  /// Whether the step that just ended reached the budget: it cut a mesh-mesh pair or left
+  /// a pair unrun (kept its last contacts) for lack of budget.
+  bool reachedBudget(const FrameSettings& settings) const;
   void refine(const FrameSettings& settings);
+  void deferOrDrop(std::uint32_t index, std::uint64_t reserved);
   /// Collides a pair that is not refined (mesh against a convex shape, a plane or another
   /// concave shape) when its last cost fits in `share` node pairs and `microsShare`, or when
   /// it costs more than the whole budget and has waited kMaxSkippedSteps; false (not run)
@@ -148,6 +152,7 @@ class FrameScheduler {
   /// (granted earlier in the round) are spent; `micros`: what is left of a time budget.
   std::uint64_t share(const FrameSettings& settings, std::uint64_t waiting,
                       std::uint64_t reserved, double micros) const;
+  double timeShare(double micros, std::uint64_t waiting) const;
 
   std::vector<DeferredPair> m_pairs;   // mesh-mesh, refined (reused: no allocation)
   std::vector<DeferredPair> m_wholes;  // the others: run whole or not at all
@@ -158,6 +163,7 @@ class FrameScheduler {
   const btDispatcherInfo* m_info = nullptr;  // the dispatch's, during run()
   std::vector<std::uint32_t> m_order; // the refinement heap: indices into m_pairs
   std::vector<std::uint32_t> m_batch; // the pairs of a round: indices into m_pairs
+  std::vector<std::uint32_t> m_deferred;  // pairs a round had no room for (deferOrDrop)
   std::vector<QueryRequest> m_requests;  // and their requests
   // Contacts of whole pairs gathered on the pool (DeferredPair::gathered indexes them): a
   // ContactSelection is 10 KB (float) or 20 KB (double), so they are kept and reused, not made per step.
@@ -181,7 +187,14 @@ class FrameScheduler {
   // Pairs of this step not queried yet, and queried but neither decided nor written.
   std::size_t m_unqueried = 0;
   std::size_t m_undecided = 0;
-  bool m_binding = false;  // this step's budget is smaller than its pairs' expected cost
+  // This step's budget is smaller than its pairs' expected cost, and it was reached lately:
+  // only then does the policy economise (reachedLately()).
+  bool m_binding = false;
+  // The budget was reached (a pair cut, or left unrun) in one of the last kReachedSteps
+  // steps: only then do clock and cost estimates decide anything (shares of a time budget,
+  // starved descents, resting pairs, coarse sampling). A budget never reached changes nothing.
+  bool m_reachedLately = false;
+  std::uint64_t m_lastReached = 0;  // the last step that reached the budget (0: none)
   bool m_collecting = false;
   std::uint64_t m_step = 0;  // steps begun
   // Bodies with unusable poses this step (reused: no allocation in steady state).
