@@ -122,7 +122,7 @@ def test_a_time_budget_cuts_queries_and_says_so(knot):
 
 def test_the_gil_is_released_while_collide_many_runs(knot):
     rng = np.random.default_rng(5)
-    poses = random_poses(rng, 3000, 0.8)
+    poses = random_poses(rng, 1000, 0.8)
     ticks = []
     done = threading.Event()
 
@@ -139,10 +139,14 @@ def test_the_gil_is_released_while_collide_many_runs(knot):
     done.set()
     ticker.join()
     during = [t for t in ticks if start < t < start + elapsed]
-    # Held GIL: no tick during the call. Released: one a millisecond or so (at least a
-    # fifth of them on a loaded machine).
+    # Held GIL: no tick during the call, one gap as long as the call. Released: ticks all
+    # through it. Not a tick rate: with both cores busy on the query (a loaded 2-core machine)
+    # the ticker gets the CPU only now and then, but it does get it.
     assert elapsed > 0.05
-    assert len(during) >= 0.2 * elapsed / 0.0011
+    assert len(during) >= 10
+    edges = [start] + during + [start + elapsed]
+    longest_gap = max(b - a for a, b in zip(edges, edges[1:]))
+    assert longest_gap < 0.5 * elapsed
 
 
 @pytest.mark.parametrize("kwargs, message", [
