@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  ccache                   # make test's second build reuses the first one's objects
   libeigen3-dev            # core
   libbullet-dev            # Bullet 3.24, single and double precision (bullet-float64.pc)
   libbullet-extras-dev     # Bullet's HACD: adb-demo's convex-decomposition peer
