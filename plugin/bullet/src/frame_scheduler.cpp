@@ -332,8 +332,15 @@ void FrameScheduler::traverse(DeferredPair& pair, const QueryRequest& request,
     // others keep the trees' order: a budget that never cuts a pair changes nothing (the
     // same simulation as no budget), and resting contacts sample the same triangle pairs
     // step after step.
-    q.descent = request.starved || pair.meshMesh().cut() ? ExactDescent::DeepestFirst
-                                                         : ExactDescent::TreeOrder;
+    // A fast pair's speculative query, too: it keeps the closest near pairs and shrinks its
+    // margin to the farthest kept once it holds them (a branch and bound on distance), so
+    // the nearest boxes go first. In the trees' order the margin shrank slowly: the bunny
+    // at 200 m/s onto a 4 cm mesh slab measured every triangle pair within the 3.3 m the
+    // step closes, a 300 ms step.
+    const bool speculating = pair.meshMesh().contactMargin() > 0.0;
+    q.descent = request.starved || pair.meshMesh().cut() || speculating
+                    ? ExactDescent::DeepestFirst
+                    : ExactDescent::TreeOrder;
   }
   // Exact mode only: the core ignores it otherwise. Not for a sweeping pair's query: its
   // margin (the distance the bodies close in the step) changes every step, which restarts a
