@@ -4,7 +4,7 @@
 //   build/bin/adb-demo [--mesh FILE]... | [--model NAME] [--bodies N] [--triangles N]
 //                      [--floor mesh|box|plane] [--seed S] [--no-sleep] [options]
 //   options: [--steps N] [--out DIR] [--render] [--compare] [--backend adb|exact|gimpact|convex]
-//            [--budget-us US | --budget-pairs N | --budget-fraction F] [--probe-every N] ...
+//            [--budget-us US | --budget-pairs N] [--probe-every N] ...
 //
 // With --scene, a scene file (docs/scenes.md); without it, the pile: generated bodies or
 // copies of mesh files dropped into a bin (adb::scene::makePileScene). Either way the scene is
@@ -36,7 +36,6 @@ struct Options {
   int steps = 0;
   double budgetMicros = 0;
   std::uint64_t budgetPairs = 0;
-  double budgetFraction = 0;
   double pMin = 0, pAccept = 0;
   int kMin = 0;
 };
@@ -68,10 +67,6 @@ void addOptions(CLI::App& app, Options& o) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--budget-pairs", o.budgetPairs,
                  "node pairs per step for every pair with an adb mesh: reproducible");
-  app.add_option("--budget-fraction", o.budgetFraction,
-                 "node pairs per step as a fraction of what exact contacts need, measured as "
-                 "the world goes (0.125: an eighth): reproducible")
-      ->check(CLI::Range(1e-6, 1e3));
   app.add_option("--p-min", o.pMin, "quality target: probability above which a node pair counts")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--k-min", o.kMin,
@@ -146,7 +141,6 @@ void takeOverrides(const CLI::App& app, Options& o) {
   if (app.count("--steps")) r.steps = o.steps;
   if (app.count("--budget-us")) r.budgetMicros = o.budgetMicros;
   if (app.count("--budget-pairs")) r.budgetNodePairs = o.budgetPairs;
-  if (app.count("--budget-fraction")) r.budgetNeedFraction = o.budgetFraction;
   if (app.count("--p-min")) r.pMin = o.pMin;
   if (app.count("--k-min")) r.kMin = o.kMin;
   if (app.count("--p-accept")) r.pAccept = o.pAccept;

@@ -41,9 +41,6 @@ void applyOverrides(const SceneRunOptions& o, Scene& s) {
   if (o.budgetNodePairs) {
     s.world.budget = {scene::BudgetSpec::Kind::NodePairs, 0.0, *o.budgetNodePairs};
   }
-  if (o.budgetNeedFraction) {
-    s.world.budget = {scene::BudgetSpec::Kind::NeedFraction, 0.0, 0, *o.budgetNeedFraction};
-  }
   if (o.pMin) s.world.pMin = *o.pMin;
   if (o.kMin) s.world.kMin = *o.kMin;
   if (o.pAccept) s.world.pAccept = *o.pAccept;
@@ -63,9 +60,6 @@ std::string budgetText(const scene::BudgetSpec& b) {
     case scene::BudgetSpec::Kind::NodePairs:
       std::snprintf(text, sizeof text, "%llu node pairs per step",
                     static_cast<unsigned long long>(b.nodePairs));
-      return text;
-    case scene::BudgetSpec::Kind::NeedFraction:
-      std::snprintf(text, sizeof text, "%g of the need per step", b.needFraction);
       return text;
     default:
       return "none";

@@ -32,7 +32,6 @@ struct SceneRunOptions {
   // Overrides of the scene's world settings.
   std::optional<double> budgetMicros;
   std::optional<std::uint64_t> budgetNodePairs;
-  std::optional<double> budgetNeedFraction;
   std::optional<double> pMin, pAccept;
   std::optional<int> kMin;
   bool noSoften = false;

@@ -2,9 +2,9 @@
 """Budget sweep (issue 44): what a per-step budget of 1/4, 1/8 and 1/16 of what exact contacts
 need costs a pile, on the scenes of docs/bullet-results.md.
 
-For each scene: exact contacts (adb's exact backend, no budget), then adb under
-`--budget-fraction` 1/4, 1/8 and 1/16 (FrameSettings::budgetNeedFraction), and with --gimpact
-GImpact (slow on big piles). Every run is 1,200 steps (--steps), probes body-body penetration
+For each scene: exact contacts (adb's exact backend, no budget), whose need N is the mean
+`from_scratch_node_pairs` over steps 100 to 400 (docs/bullet-results.md's definition), then adb
+under `--budget-pairs` N/4, N/8 and N/16, and with --gimpact GImpact (slow on big piles). Every run is 1,200 steps (--steps), probes body-body penetration
 from the geometry every --probe-every steps, and lets Bullet put bodies to sleep.
 
 Writes, in --out: runs/NAME/ (each run's steps.csv, summary.json, stdout, command), runs.csv
@@ -92,18 +92,19 @@ def main():
     started = time.monotonic()
     results = []
     for scene in a.scenes:
-        def go(backend, kind, fraction=None):
+        def go(backend, kind, fraction=None, budget=None):
             spec = RunSpec(scene, made[scene], backend, kind, a.seed, a.steps, a.probe_every,
-                           fraction)
+                           fraction, budget)
             summary = run(spec, a.demo, a.out, reuse=not a.rerun)
             progress.report(summary)
             results.append(summary)
+            return summary
 
-        go("exact", "exact")
+        need = go("exact", "exact").settled_need()
         if a.gimpact:
             go("gimpact", "gimpact")
         for f in FRACTIONS:
-            go("adb", "fraction", f)
+            go("adb", "fraction", f, max(1, round(f * need)))
     elapsed = (time.monotonic() - started) / 60
     command = "/usr/bin/python3 studies/budget_sweep/budget_sweep.py " + " ".join(
         arg for arg in sys.argv[1:] if arg != "--rerun")

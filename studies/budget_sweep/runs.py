@@ -31,7 +31,8 @@ class RunSpec:
     seed: int
     steps: int
     probe_every: int
-    fraction: Optional[float] = None  # budget as a fraction of the need (kind fraction)
+    fraction: Optional[float] = None  # budget as a fraction of exact contacts' need
+    budget: Optional[int] = None      # node pairs per step: fraction x the need
 
     @property
     def name(self) -> str:
@@ -49,7 +50,7 @@ class RunSpec:
                "--steps", str(self.steps), "--every", "1000000",
                "--probe-every", str(self.probe_every), "--out", out_dir]
         if self.kind == "fraction":
-            cmd += ["--budget-fraction", "%.6g" % self.fraction]
+            cmd += ["--budget-pairs", str(self.budget)]
         return cmd
 
 

@@ -102,10 +102,9 @@ def write_all(results, args, elapsed_min, command):
         command,
         "```",
         "",
-        "%d runs, %.0f min. Each pile with exact contacts (no budget)%s, then under "
-        "`--budget-fraction` 1/4, 1/8 and 1/16 (FrameSettings::budgetNeedFraction: the step's "
-        "node pairs are that fraction of the need, measured as the pile goes). %d of %d "
-        "budgeted runs meet every target." % (
+        "%d runs, %.0f min. Each pile with exact contacts (no budget)%s, whose need N is "
+        "the mean of `from_scratch_node_pairs` over steps 100 to 400, then under "
+        "`--budget-pairs` N/4, N/8 and N/16. %d of %d budgeted runs meet every target." % (
             len(results), elapsed_min,
             " and GImpact" if any(t["budget"] == "gimpact" for t in table) else "",
             met, len(budgeted)),

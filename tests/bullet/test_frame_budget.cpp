@@ -389,42 +389,6 @@ TEST(FrameBudget, ANodePairBudgetJustAboveTheNeedChangesNothing) {
   }
 }
 
-TEST(FrameBudget, ABudgetAsAFractionOfTheNeedFollowsThePile) {
-  // A quarter of what exact contacts need, measured step by step as the pile falls and
-  // lands: the step's node-pair budget is a quarter of the pairs' needs from the roots
-  // (within the pairs' first grants while they are new), the step spends it and no more,
-  // and the run is reproducible to the bit.
-  FrameSettings quarter;
-  quarter.budgetNeedFraction = 0.25;
-  std::vector<std::uint64_t> first, second;
-  for (std::vector<std::uint64_t>* hashes : {&first, &second}) {
-    World w(test::Dispatch::Adb, quarter);
-    addPile(w);
-    std::uint64_t needBefore = 0;
-    int cutSteps = 0;
-    for (int step = 0; step < 90; ++step) {
-      w.step();
-      const FrameStats& s = w.adbDispatcher->lastFrameStats();
-      hashes->push_back(test::hashBodies(w.bodies));
-      cutSteps += s.cutPairs > 0 ? 1 : 0;
-      // This step's budget comes from the needs the last step left (its fromScratch).
-      if (step > 0 && s.pairs > 0) {
-        const double expected = 0.25 * double(needBefore);
-        EXPECT_NEAR(double(s.budgetNodePairs), expected, 0.25 * 256.0 * s.pairs + 1.0)
-            << "step " << step + 1;
-        EXPECT_LE(s.nodePairs, s.budgetNodePairs + s.budgetNodePairs / 20 + 64 * s.pairs)
-            << "step " << step + 1;
-      }
-      needBefore = s.fromScratchNodePairs;
-    }
-    EXPECT_GT(cutSteps, 10) << "a quarter of the need must bind";
-  }
-  EXPECT_EQ(first, second);
-  FrameSettings bad;
-  bad.budgetNeedFraction = 0.0;
-  EXPECT_THROW(validate(bad), SettingsError);
-}
-
 TEST(FrameBudget, ATimeBudgetNeverReachedChangesNothing) {
   // Twice the unbudgeted pile's slowest step: a budget a quiet machine never reaches, but one
   // whose even time shares are smaller than what a landing pair needs. A clock estimate

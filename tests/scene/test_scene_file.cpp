@@ -258,26 +258,6 @@ TEST(SceneFile, NonFiniteAndOutOfRangeNumbersAreRefused) {
       << huge.what();
 }
 
-TEST(SceneFile, ABudgetIsOneOfMicrosNodePairsOrAFractionOfTheNeed) {
-  const Scene s = parseScene(
-      edited("\"node_pairs\": 20000", "\"need_fraction\": 0.125"), "scene.json");
-  EXPECT_EQ(s.world.budget.kind, BudgetSpec::Kind::NeedFraction);
-  EXPECT_EQ(s.world.budget.needFraction, 0.125);
-  const SceneError two =
-      errorOf(edited("\"node_pairs\": 20000", "\"node_pairs\": 20000, \"need_fraction\": 0.5"));
-  EXPECT_EQ(two.where(), "world.budget");
-  EXPECT_NE(std::string(two.what()).find("give one of"), std::string::npos) << two.what();
-  EXPECT_EQ(errorOf(edited("\"node_pairs\": 20000", "\"need_fraction\": 0")).where(),
-            "world.budget.need_fraction");
-  // Overlap queries stop at their first hit: nothing measures a need.
-  const std::string overlap =
-      edited("\"node_pairs\": 20000", "\"need_fraction\": 0.5");
-  const std::string effects = "[\"dynamics\", \"friction\", \"restitution\"]";
-  std::string overlapScene = overlap;
-  overlapScene.replace(overlapScene.find(effects), effects.size(), "[\"overlap\"]");
-  EXPECT_EQ(errorOf(overlapScene).where(), "world.budget.need_fraction");
-}
-
 TEST(SceneFile, LoadingNamesTheFileAndReadsMeshPathsBesideIt) {
   const fs::path folder = fs::temp_directory_path() / "adb_scene_test_load";
   fs::create_directories(folder);

@@ -29,8 +29,6 @@ std::optional<FrameSettings::Fronts> frontsNamed(const std::string& name) {
 void validate(const FrameSettings& s) {
   require(!std::isnan(s.budgetMicros) && s.budgetMicros >= 0.0, "budgetMicros", s.budgetMicros,
           ">= 0 (infinity for none)");
-  require(s.budgetNeedFraction > 0.0, "budgetNeedFraction", s.budgetNeedFraction,
-          "> 0 (infinity for none)");
   require(s.pMin >= 0.0 && s.pMin <= 1.0, "pMin", s.pMin, "in [0, 1]");
   require(s.kMin >= 0, "kMin", s.kMin, ">= 0 (0: never stop on quality)");
   require(s.pAccept >= 0.0 && s.pAccept <= 1.0, "pAccept", s.pAccept, "in [0, 1]");

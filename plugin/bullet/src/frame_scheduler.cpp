@@ -145,13 +145,11 @@ void FrameScheduler::noteBadPose(const btCollisionObject* body, PoseDefect defec
   m_collecting = collecting;
 }
 
-void FrameScheduler::run(const FrameSettings& requested, const btDispatcherInfo& info) {
-  const FrameSettings settings = withNeedFraction(requested);
+void FrameScheduler::run(const FrameSettings& settings, const btDispatcherInfo& info) {
   m_collecting = false;
   m_info = &info;
   m_start = Clock::now();
   m_stats = FrameStats{};
-  m_stats.budgetNodePairs = settings.budgetNodePairs;
   m_pool.configure(settings.threads);
   m_stats.threads = static_cast<std::uint32_t>(m_pool.threads());
   m_stats.pairs = static_cast<std::uint32_t>(m_pairs.size());
@@ -221,33 +219,6 @@ void FrameScheduler::auditContacts(const FrameSettings& settings) {
     m_audit->audit(evidence, settings, audit, m_audited);
   }
   audit.micros = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
-}
-
-// What exact contacts need this step, from each pair's last run: a mesh-mesh pair's need
-// from the roots (a cut pair's at least twice what it used), another pair's last work, a
-// pair never run its first grant.
-std::uint64_t FrameScheduler::stepNeed() const {
-  std::uint64_t need = 0;
-  for (const DeferredPair& p : m_pairs) {
-    const std::uint64_t last = p.meshMesh().neededFromScratch();
-    need = saturatingAdd(need, last > 0 ? last : kFirstGrant);
-  }
-  for (const DeferredPair& p : m_wholes) {
-    const std::uint64_t last = p.algorithm->lastWork();
-    need = saturatingAdd(need, last > 0 ? last : kFirstWholeWork);
-  }
-  return need;
-}
-
-// The settings with FrameSettings::budgetNeedFraction turned into this step's node pairs.
-FrameSettings FrameScheduler::withNeedFraction(const FrameSettings& requested) const {
-  FrameSettings s = requested;
-  if (std::isinf(s.budgetNeedFraction)) return s;
-  const double budget = std::ceil(s.budgetNeedFraction * static_cast<double>(stepNeed()));
-  const double largest = static_cast<double>(kUnlimited - 1);  // kUnlimited means none
-  s.budgetNodePairs =
-      std::min(s.budgetNodePairs, static_cast<std::uint64_t>(std::min(budget, largest)));
-  return s;
 }
 
 std::uint64_t FrameScheduler::nodePairsLeft(const FrameSettings& s) const {

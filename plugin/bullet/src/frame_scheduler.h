@@ -145,8 +145,6 @@ class FrameScheduler {
   /// once everything is written and timed.
   void auditContacts(const FrameSettings& settings);
   std::uint64_t nodePairsLeft(const FrameSettings& settings) const;
-  std::uint64_t stepNeed() const;
-  FrameSettings withNeedFraction(const FrameSettings& requested) const;
   /// Microseconds left of a time budget, less the margin and, with `holdBackWrites`, the
   /// expected cost of the mesh-mesh contacts still to write.
   double microsLeft(const FrameSettings& settings, bool holdBackWrites = true) const;

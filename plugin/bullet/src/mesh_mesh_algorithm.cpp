@@ -154,16 +154,13 @@ const QueryResult& MeshMeshAlgorithm::query(const detail::DeferredPair& pair,
   m_lastStop = r.stop;
   m_pointsReady = false;
   // The result's counters cover every step of this query: what the pair used this frame.
+  m_neededFromScratch = r.fromScratchNodePairs;
   if (!isBudgetStop(r.stop)) {
     m_needed = r.nodePairs;
-    m_neededFromScratch = r.fromScratchNodePairs;
   } else {
     // Cut: it needs more than it had. Without this a pair first met while barely touching
-    // would be granted its old need step after step while the bodies sink into each other,
-    // and a budget that is a fraction of the need (FrameSettings::budgetNeedFraction) would
-    // shrink with every cut.
+    // would be granted its old need step after step while the bodies sink into each other.
     m_needed = std::max(m_needed, 2 * r.nodePairs);
-    m_neededFromScratch = std::max(m_neededFromScratch, 2 * r.fromScratchNodePairs);
   }
   return r;
 }

@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "adb/bullet/conversions.h"
-#include "adb/scene/scene_file.h"
 
 namespace adb::scene::detail {
 namespace {
@@ -32,11 +31,6 @@ OverlapQueries::OverlapQueries(const Scene& scene, Backend backend) : m_budget(s
   m_settings.kMin = std::max(1, scene.world.kMin);
   m_settings.stopAtFirstHit = true;
   m_budgeted = backend == Backend::Adb && m_budget.kind != BudgetSpec::Kind::None;
-  if (m_budgeted && m_budget.kind == BudgetSpec::Kind::NeedFraction) {
-    // Overlap queries stop at the first hit: none measures what exact contacts need.
-    throw SceneError(scene.file.string(), "world.budget.need_fraction",
-                     "needs contacts or dynamics (overlap queries measure no need)");
-  }
   m_adbQueries = usesAdbShapes(backend);
 }
 

@@ -223,15 +223,10 @@ WorldSpec readWorld(const Json& j, const std::string& file) {
   }
   if (const Json* b = o.find("budget")) {
     Object budget(*b, o.at("budget"), file);
-    const int given = int(budget.has("micros")) + int(budget.has("node_pairs")) +
-                      int(budget.has("need_fraction"));
-    if (given > 1) {
-      budget.fail(budget.path(), "give one of 'micros', 'node_pairs' or 'need_fraction'");
+    if (budget.has("micros") && budget.has("node_pairs")) {
+      budget.fail(budget.path(), "give either 'micros' or 'node_pairs', not both");
     }
-    if (budget.has("need_fraction")) {
-      w.budget.kind = BudgetSpec::Kind::NeedFraction;
-      w.budget.needFraction = budget.number("need_fraction", 0.0, 1e-6, 1e3);
-    } else if (budget.has("micros")) {
+    if (budget.has("micros")) {
       w.budget.kind = BudgetSpec::Kind::Micros;
       w.budget.micros = budget.number("micros", 0.0, 0.0, 1e9);
     } else if (budget.has("node_pairs")) {
@@ -239,7 +234,7 @@ WorldSpec readWorld(const Json& j, const std::string& file) {
       w.budget.nodePairs = static_cast<std::uint64_t>(
           budget.integer("node_pairs", 0, 0, std::numeric_limits<std::int64_t>::max()));
     } else {
-      budget.fail(budget.path(), "expected 'micros', 'node_pairs' or 'need_fraction'");
+      budget.fail(budget.path(), "expected 'micros' or 'node_pairs'");
     }
     budget.finish();
   }
@@ -557,13 +552,6 @@ Scene parseScene(const std::string& text, const std::string& name,
     }
   }
   scene.effects = readEffects(top.require("effects"), name);
-  if (scene.effects.kind == Effects::Kind::Overlap &&
-      scene.world.budget.kind == BudgetSpec::Kind::NeedFraction) {
-    // Overlap queries stop at the first hit: no query measures what exact contacts need.
-    throw SceneError(name, "world.budget.need_fraction",
-                     "needs contacts or dynamics (overlap queries measure no need): give "
-                     "'micros' or 'node_pairs'");
-  }
   top.finish();
   return scene;
 }

@@ -64,9 +64,6 @@ FrameSettings frameSettings(const Scene& scene, Backend backend) {
   if (backend == Backend::Adb) {
     if (w.budget.kind == BudgetSpec::Kind::Micros) f.budgetMicros = w.budget.micros;
     if (w.budget.kind == BudgetSpec::Kind::NodePairs) f.budgetNodePairs = w.budget.nodePairs;
-    if (w.budget.kind == BudgetSpec::Kind::NeedFraction) {
-      f.budgetNeedFraction = w.budget.needFraction;
-    }
     f.pMin = w.pMin;
     f.kMin = w.kMin;
     f.pAccept = w.pAccept;
@@ -114,11 +111,8 @@ double budgetUse(const BudgetSpec& budget, const FrameStats& frame) {
   if (budget.kind == BudgetSpec::Kind::Micros) {
     return budget.micros > 0 ? frame.micros / budget.micros : 0.0;
   }
-  // A need fraction's node pairs are the step's own (FrameStats::budgetNodePairs).
-  const std::uint64_t nodePairs =
-      budget.kind == BudgetSpec::Kind::NeedFraction ? frame.budgetNodePairs : budget.nodePairs;
-  return nodePairs > 0
-             ? static_cast<double>(frame.nodePairs) / static_cast<double>(nodePairs)
+  return budget.nodePairs > 0
+             ? static_cast<double>(frame.nodePairs) / static_cast<double>(budget.nodePairs)
              : 0.0;
 }
 

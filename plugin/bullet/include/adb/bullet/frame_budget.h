@@ -51,14 +51,6 @@ struct FrameSettings {
   /// triangles they visit): the reproducible budget. Every mesh-mesh pair's
   /// roots are always tested, so a step evaluates at most max(budget, pairs) node pairs.
   std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
-  /// A budget as a fraction of what exact contacts need this step (1/8: 0.125), beside the
-  /// two above: the step's node-pair budget is this fraction of its need, measured as the
-  /// world goes: each pair's last need from the trees' roots (FrameStats::
-  /// fromScratchNodePairs; a pair the budget cut needs at least twice what it used), a pair
-  /// never run counted at its first grant. It follows a pile from its fall to its rest, where
-  /// a fixed budget is too small while bodies land or too large once they rest. Node pairs,
-  /// so a step is reproducible. With budgetNodePairs too, the smaller; infinity: none.
-  double budgetNeedFraction = std::numeric_limits<double>::infinity();
   /// A node pair with probability above pMin counts towards kMin (the paper's collision pair).
   double pMin = 0.99;
   /// kMin > 0: pairs run the paper's best-first traversal and stop refining once kMin node
@@ -238,10 +230,6 @@ struct FrameStats {
   /// in place of its walk's (adb::QueryResult::fromScratchNodePairs). Budget fractions are
   /// stated against it.
   std::uint64_t fromScratchNodePairs = 0;
-  /// The step's node-pair budget: FrameSettings::budgetNodePairs, or its need fraction of
-  /// the step's need (FrameSettings::budgetNeedFraction) when smaller; the largest
-  /// std::uint64_t when there is none.
-  std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
   std::uint32_t exactPairs = 0;     ///< decided exactly: traversal completed
   std::uint32_t qualityPairs = 0;   ///< stopped at the quality target (k_min above p_min)
   std::uint32_t cutPairs = 0;       ///< cut by the budget: plausible contacts (pAccept)

@@ -18,12 +18,9 @@ namespace adb::scene {
 
 /// The per-step budget for every pair that involves an adb mesh (adb::FrameSettings).
 struct BudgetSpec {
-  /// NeedFraction: FrameSettings::budgetNeedFraction (a world with contacts: its need is
-  /// measured as it goes).
-  enum class Kind { None, Micros, NodePairs, NeedFraction } kind = Kind::None;
+  enum class Kind { None, Micros, NodePairs } kind = Kind::None;
   double micros = 0.0;
   std::uint64_t nodePairs = 0;
-  double needFraction = 0.0;
 };
 
 struct WorldSpec {
