@@ -9,6 +9,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 from tables import PENETRATION_FACTOR, rows_of  # noqa: E402
 
@@ -57,10 +58,11 @@ def write_all(results, args):
     pen.set_yticks(range(len(scenes)))
     pen.set_yticklabels(scenes)
     pen.invert_yaxis()
-    pen.legend(loc="lower right", fontsize=8)
+    pen.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+    pen.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     sleep.axvline(steps, color="grey", lw=0.8)
     sleep.set_xlabel("all asleep from step (x: awake after %d steps)" % steps)
-    sleep.legend(loc="lower right", fontsize=8)
+    sleep.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     for ax in (pen, sleep):
         ax.grid(True, axis="x", alpha=0.3)
     fig.suptitle("Piles under a budget of 1/4, 1/8 and 1/16 of exact contacts' need")
