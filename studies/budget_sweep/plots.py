@@ -60,6 +60,7 @@ def write_all(results, args):
     pen.invert_yaxis()
     pen.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
     pen.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    pen.set_xticks([1, 2, 5, 10, 20, 50])
     sleep.axvline(steps, color="grey", lw=0.8)
     sleep.set_xlabel("all asleep from step (x: awake after %d steps)" % steps)
     sleep.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
