@@ -130,6 +130,8 @@ class FrameScheduler {
   /// or approaching (both run whatever the budget), then the others.
   static constexpr std::uint8_t kArriving = 0, kMustRun = 1, kInTurn = 2;
   std::uint8_t urgency(const DeferredPair& pair) const;
+  bool rests(const DeferredPair& pair) const;
+  void runMustRunWholes(const FrameSettings& settings);
   /// Whether a pair with the world has a moving body that another pair with the world holds
   /// up (noteSupported()).
   bool supported(const DeferredPair& pair) const;
