@@ -446,7 +446,7 @@ bool FrameScheduler::rests(const DeferredPair& pair) const {
 // What may wait then gets what they left.
 void FrameScheduler::runMustRunWholes(const FrameSettings& settings) {
   for (DeferredPair& pair : m_wholes) {
-    if (pair.written || !(sweeps(pair) || pair.urgency <= kMustRun)) continue;
+    if (pair.written || pair.urgency > kMustRun) continue;
     if (rests(pair)) {
       pair.resting = true;
       continue;
@@ -605,7 +605,7 @@ bool FrameScheduler::approaching(const DeferredPair& pair) {
 
 std::uint8_t FrameScheduler::urgency(const DeferredPair& pair) const {
   if (arriving(pair)) return kArriving;
-  return losingHold(pair) || approaching(pair) ? kMustRun : kInTurn;
+  return sweeps(pair) || losingHold(pair) || approaching(pair) ? kMustRun : kInTurn;
 }
 
 void FrameScheduler::noteSupported() {
@@ -658,7 +658,7 @@ bool FrameScheduler::runWhole(DeferredPair& pair, std::uint64_t shareUnits, doub
   // (a GJK pair costs far more per unit than a closed-form one).
   const std::uint64_t expected = expectedCost(algorithm.lastWork(), kFirstWholeWork);
   const double expectedMicros = m_costs.expectedWholeMicros(algorithm);
-  if (!sweeps(pair) && (expected > shareUnits || expectedMicros > microsShare)) {
+  if (expected > shareUnits || expectedMicros > microsShare) {
     // A pair expected to cost more than the whole budget would never run again (the
     // estimate is re-measured only by running), and its kept contacts would not hold a
     // moving body: it runs regardless, the step overrunning by that one pair, once its

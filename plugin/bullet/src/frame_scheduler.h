@@ -126,8 +126,9 @@ class FrameScheduler {
   /// Whether a pair with the world has a body that moved past the breaking threshold since
   /// the pair last ran and was near it then, or never ran: it runs whatever the budget.
   static bool approaching(const DeferredPair& pair);
-  /// The order whole pairs run in (DeferredPair::urgency): arriving, then losing their hold
-  /// or approaching (both run whatever the budget), then the others.
+  /// The order whole pairs run in (DeferredPair::urgency): arriving, then sweeping (CCD or
+  /// landing), losing their hold or approaching (all run whatever the budget, first), then
+  /// the others.
   static constexpr std::uint8_t kArriving = 0, kMustRun = 1, kInTurn = 2;
   std::uint8_t urgency(const DeferredPair& pair) const;
   bool rests(const DeferredPair& pair) const;
