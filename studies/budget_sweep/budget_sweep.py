@@ -29,7 +29,7 @@ FRACTIONS = (1 / 4, 1 / 8, 1 / 16)
 
 
 def scenes(meshes, repo):
-    """The piles of docs/bullet-results.md's floor table, and the robot room."""
+    """The piles of docs/bullet-results.md ("How to reproduce" lists them) and the robot room."""
     made = {}
     for floor in ("plane", "box", "mesh"):
         for model in ("gears", "knot", "pipes"):

@@ -173,8 +173,8 @@ TEST(BudgetAllPairs, ANodePairBudgetHoldsAtP99WhateverThePairKinds) {
   EXPECT_GT(kept, 0u) << "a quarter of the need must skip some whole pairs";
   EXPECT_TRUE(cut.finite);
   // Skipped pairs keep their contacts: nothing is lost through the plane. (Under a quarter
-  // of the need a body may be pressed into it for a while: the depth of that is issue 11's
-  // open "plausible under tight budgets", docs/bullet-results.md.)
+  // of the need a body may be pressed into it for a while: docs/bullet-results.md, "Tight
+  // budgets: deepest overlap first, plausible depths capped".)
   EXPECT_GT(cut.lowestAtEnd, 0.0);
 }
 
