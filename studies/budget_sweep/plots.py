@@ -32,7 +32,8 @@ def write_all(results, args):
             scenes.append(t["scene"])
     fig, (pen, sleep) = plt.subplots(1, 2, figsize=(13, 0.45 * len(scenes) + 2), sharey=True)
     steps = max(r.spec.steps for r in results)
-    for budget, colour in COLOURS.items():
+    highest = 1.0
+    for index, (budget, colour) in enumerate(COLOURS.items()):
         ys, pens, sleeps, awake = [], [], [], []
         for t in table:
             if t["budget"] != budget:
@@ -42,8 +43,11 @@ def write_all(results, args):
             if budget != "exact" and not math.isnan(ratio):
                 ys.append(y)
                 pens.append(ratio)
+                highest = max(highest, ratio)
             asleep = t["all_asleep_from"]
-            (sleeps if asleep else awake).append((asleep or steps * 1.04, y))
+            # Awake runs side by side past the run's end, one column per budget: stacked,
+            # the crosses of two budgets hid each other.
+            (sleeps if asleep else awake).append((asleep or steps * (1.03 + 0.025 * index), y))
         if ys:
             pen.scatter(pens, ys, color=colour, label=budget, s=28)
         if sleeps:
@@ -60,7 +64,8 @@ def write_all(results, args):
     pen.invert_yaxis()
     pen.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
     pen.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-    pen.set_xticks([1, 2, 5, 10, 20, 50])
+    pen.set_xticks([t for t in (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000)
+                    if t <= highest * 1.5])
     sleep.axvline(steps, color="grey", lw=0.8)
     sleep.set_xlabel("all asleep from step (x: awake after %d steps)" % steps)
     sleep.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
