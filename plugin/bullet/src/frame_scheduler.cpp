@@ -411,7 +411,7 @@ void FrameScheduler::firstPass(const FrameSettings& settings) {
     // does not run this step it keeps its last contacts.
     for (DeferredPair& pair : m_wholes) {
       if (pair.written || anchored(pair) != group) continue;
-      if (pair.resting || rests(pair)) {
+      if (pair.resting || rests(pair)) {  // resting: marked by runMustRunWholes
         pair.resting = true;
         --waiting;
         continue;

@@ -481,8 +481,8 @@ struct Traversal::Impl {
   // (a gear falling flat onto a floor) have hundreds of triangle pairs within the distance
   // the bodies close in a step, and enumerating them all cost a robot arm falling into a
   // room 188,000 node pairs in one step (docs/bullet-results.md, "CCD: fast mesh bodies
-  // against thin walls and floors"). Not while walking a front: its certificates were measured with the settings'
-  // margin.
+  // against thin walls and floors"). Not while walking a front: its certificates were
+  // measured with the settings' margin.
   void shrinkMargin(double farthest) {
     if (walking || !(farthest < margin)) return;
     margin = farthest;
