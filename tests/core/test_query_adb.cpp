@@ -1,6 +1,8 @@
 // ADB mode: error rate against the exact answer over the benchmark distances, monotone
 // confidence under growing budgets, witnesses, thread safety, no allocation in steady state.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -461,13 +463,50 @@ TEST(AdbAllocation, RepeatedQueriesAllocateNothing) {
 }
 
 
+// The first and second budgeted queries of a fresh process: the tree is built before it, as
+// a user builds theirs before stepping. Runs in a forked child so that the parent can repeat it.
+struct ColdAndWarm {
+  double coldMicros = 0;
+  std::uint64_t coldNodePairs = 0;
+  std::uint64_t warmNodePairs = 0;
+};
+
+ColdAndWarm firstTwoQueriesOfAFreshProcess(const AdbTree& tree, const Pose& at,
+                                           const QuerySettings& settings) {
+  int fds[2];
+  if (pipe(fds) != 0) return {};
+  const pid_t child = fork();
+  if (child == 0) {
+    close(fds[0]);
+    QueryScratch first, second;
+    const QueryResult cold = collide(tree, Pose{}, tree, at, settings, first);
+    const QueryResult warm = collide(tree, Pose{}, tree, at, settings, second);
+    const ColdAndWarm out{1e6 * cold.seconds, cold.nodePairs, warm.nodePairs};
+    const bool written = write(fds[1], &out, sizeof out) == static_cast<ssize_t>(sizeof out);
+    _exit(written ? 0 : 1);
+  }
+  close(fds[1]);
+  ColdAndWarm out;
+  const bool read_ok = read(fds[0], &out, sizeof out) == static_cast<ssize_t>(sizeof out);
+  close(fds[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_TRUE(read_ok && WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  return out;
+}
+
 TEST(ColdStart, TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond) {
-  // ctest runs each test in a process of its own: this is the process's first query. The
-  // tables behind the probabilities were built on first use, inside the first query's clock:
-  // this query (a torus knot against itself 0.3 apart, under 50 us) evaluated 1 node pair
-  // in 520 us and answered from the roots, against 205 node pairs for the second (measured
-  // with this test before the tables were built at load; 2.6 ms in issue 37's report). Tolerances: the first does at least half the second's node
-  // pairs, and takes at most ten times the budget (the clock is checked between expansions).
+  // A fresh process's first query. The tables behind the probabilities were built on first
+  // use, inside the first query's clock: this query (a torus knot against itself 0.3 apart,
+  // under 50 us) evaluated 1 node pair in 520 us and answered from the roots, against 205 node
+  // pairs for the second (measured with this test before the tables were built at load; 2.6 ms
+  // in issue 37's report). Tolerances: the first does at least half the second's node pairs,
+  // and takes at most ten times the budget (the clock is checked between expansions).
+  // Each fresh process is a forked child (the tables are built at load, before main, so a
+  // child's first query is as cold as the parent's would be). Five of them, judged by the
+  // median: this machine stalls a running process now and then (a pure 1 ms loop: 21 of 2,000
+  // chunks over 10 ms), and one such stall inside one 50 us query failed CI (834 us), which
+  // says nothing of the tables.
   const TriangleMesh mesh = gen::makeModel("knot", 20000);
   const AdbTree tree(mesh);
   const Pose at{Mat3::Identity(), Vec3(0.3, 0, 0)};
@@ -488,11 +527,14 @@ TEST(ColdStart, TheFirstBudgetedQueryOfAProcessDoesAsMuchAsTheSecond) {
 #endif
   QuerySettings settings = test::adbSettings(0.99, 10);
   settings.budgetMicros = kBudgetMicros;
-  QueryScratch first, second;
-  const QueryResult cold = collide(tree, Pose{}, tree, at, settings, first);
-  const QueryResult warm = collide(tree, Pose{}, tree, at, settings, second);
-  EXPECT_GE(2 * kSlack * cold.nodePairs, warm.nodePairs) << "cold " << 1e6 * cold.seconds << " us";
-  EXPECT_LT(1e6 * cold.seconds, 10.0 * static_cast<double>(kSlack) * settings.budgetMicros);
+  constexpr int kProcesses = 5;
+  std::vector<ColdAndWarm> runs;
+  for (int i = 0; i < kProcesses; ++i) runs.push_back(firstTwoQueriesOfAFreshProcess(tree, at, settings));
+  std::sort(runs.begin(), runs.end(),
+            [](const ColdAndWarm& a, const ColdAndWarm& b) { return a.coldMicros < b.coldMicros; });
+  const ColdAndWarm& median = runs[kProcesses / 2];
+  EXPECT_GE(2 * kSlack * median.coldNodePairs, median.warmNodePairs) << "cold " << median.coldMicros << " us";
+  EXPECT_LT(median.coldMicros, 10.0 * static_cast<double>(kSlack) * settings.budgetMicros);
 }
 
 
