@@ -29,6 +29,7 @@ struct DeferredPair {
   btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
   int partId0, index0, partId1, index1;
   std::uint32_t sequence;  // order of the dispatch: ties in the whole pairs' order
+  btVector3 approach;      // approachInStep() of the step's velocities
   // A whole pair: how far its mesh moved against the other body since it last ran (its
   // kept contacts' error), infinite if it never ran. The most moved run first.
   btScalar motion = 0;
@@ -45,6 +46,7 @@ struct DeferredPair {
   // them (FrameScheduler::keepRestingContacts): such a pair waits for nothing this step.
   bool written = false;
   bool resting = false;        // a whole pair left out of the first pass: its mesh barely moved
+  bool overdue = false;        // a mesh-mesh pair: FrameScheduler::overdue() at the step's start
   // A whole pair whose contacts were gathered on the pool this step: its index in the
   // scheduler's gathered contacts; -1 otherwise.
   std::int32_t gathered = -1;

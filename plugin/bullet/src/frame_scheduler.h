@@ -29,7 +29,8 @@ struct QueryRequest {
   bool resume = false;      ///< go on from where the pair's last query stopped
   /// Granted less than it wants: a new exact query then descends deepest first.
   bool starved = false;
-  /// A sweeping pair's (FrameScheduler::sweeps): an exact query with no grant and no time cap.
+  /// A pair that runs whatever the budget (FrameScheduler::sweeps, overdue): an exact query
+  /// with no grant and no time cap.
   bool whole = false;
 
   /// A query from the roots; `starved` as above.
@@ -53,7 +54,7 @@ class FrameScheduler {
   bool collecting() const { return m_collecting; }
   /// Notes a pair during the dispatch.
   void defer(ManifoldAlgorithm* algorithm, const btCollisionObjectWrapper* body0,
-             const btCollisionObjectWrapper* body1);
+             const btCollisionObjectWrapper* body1, btScalar timeStep);
   /// Spends the budget across the noted pairs, writes their manifolds, ends the step.
   void run(const FrameSettings& settings, const btDispatcherInfo& info);
   const FrameStats& stats() const { return m_stats; }
@@ -104,6 +105,8 @@ class FrameScheduler {
   /// The first pass's mesh-mesh queries of one group (anchored or not), `waiting` pairs of
   /// the group not run yet, in rounds.
   void firstQueries(bool group, std::uint64_t waiting, const FrameSettings& settings);
+  /// The first pass's rounds over the group's overdue pairs, or over its others.
+  void queryRounds(bool group, bool overdue, std::uint64_t waiting, const FrameSettings& settings);
   /// Starts a round: an empty batch, whose queries stop by what is left of the step now.
   void beginRound(const FrameSettings& settings);
   /// Runs the traversals of the round's batch (m_batch, m_requests) on the pool; the caller
@@ -118,6 +121,9 @@ class FrameScheduler {
   /// Whether a pair runs whatever the budget: it has speculative contacts, or had them
   /// within the last ManifoldAlgorithm::kLandingSteps steps (its body is landing).
   static bool sweeps(const DeferredPair& pair);
+  /// Whether a mesh-mesh pair with the world has been cut for more than kMaxSkippedSteps
+  /// steps while its body moved past the breaking threshold: it takes what it wants first.
+  bool overdue(const DeferredPair& pair) const;
   /// Whether a whole pair's body is arriving: nothing to keep, moved, near last time.
   bool arriving(const DeferredPair& pair) const;
   /// Whether a pair with the world is losing its hold on its body (sinking into the world,

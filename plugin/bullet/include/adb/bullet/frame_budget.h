@@ -236,6 +236,12 @@ struct FrameStats {
   /// Of those, the ones a time budget left no time to write: they keep last step's contacts,
   /// refreshed for the new poses.
   std::uint32_t lateKeptPairs = 0;
+  /// Mesh-mesh pairs run whatever the budget, where cutting them could lose a body: a body
+  /// sweeping (asked for CCD, or thin and fast against the world) or landing, or a pair with
+  /// the world cut for steps while its body closes in on it (overdue). A budget that holds
+  /// otherwise may be overrun by what they cost.
+  std::uint32_t mustRunPairs = 0;
+  std::uint64_t mustRunNodePairs = 0;  ///< node pairs those pairs evaluated (in nodePairs)
   std::uint32_t queries = 0;        ///< pair queries run (a pair re-run counts again)
   std::uint64_t nodePairs = 0;      ///< node pairs evaluated, all queries of the step (the
                                     ///< other pairs' nodes and triangles included)
