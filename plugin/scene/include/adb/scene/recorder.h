@@ -81,7 +81,7 @@ struct StepCell {
   double value;
   bool integer;  ///< a count, written without a fraction
 };
-inline constexpr std::size_t kStepColumns = 47;
+inline constexpr std::size_t kStepColumns = 48;
 /// A step's row of steps.csv, column by column, in the file's order (docs/scenes.md says what
 /// each means): the one place the columns are listed, for the file and for the Python
 /// module's World.stats(). `probe`: the step's penetration from the geometry, if measured
