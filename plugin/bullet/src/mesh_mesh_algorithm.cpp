@@ -126,8 +126,7 @@ WorldBox worldBox(const btCollisionShape* shape, const btTransform& transform) {
 
 std::uint64_t MeshMeshAlgorithm::collideNow(const btCollisionObjectWrapper* body0,
                                            const btCollisionObjectWrapper* body1,
-                                           const btDispatcherInfo& info,
-                                           btManifoldResult* result) {
+                                           const btDispatcherInfo&, btManifoldResult* result) {
   QuerySettings settings;
   settings.mode = QueryMode::Exact;
   if (!start(meshOf(body0).tree(), body0->getWorldTransform(), meshOf(body1).tree(),
@@ -137,10 +136,7 @@ std::uint64_t MeshMeshAlgorithm::collideNow(const btCollisionObjectWrapper* body
   const QueryResult& r = m_traversal.step();
   m_lastStop = r.stop;
   computePoints(body0->getCollisionShape(), body0->getWorldTransform(),
-                body1->getCollisionShape(), body1->getWorldTransform(),
-                approachInStep(body0->getCollisionObject(), body1->getCollisionObject(),
-                               info.m_timeStep),
-                FrameSettings{});
+                body1->getCollisionShape(), body1->getWorldTransform(), FrameSettings{});
   writePoints(body0, body1, *result);
   return r.nodePairs + r.triangleTests;
 }
@@ -192,8 +188,7 @@ bool MeshMeshAlgorithm::start(const AdbTree& tree0, const btTransform& transform
 
 void MeshMeshAlgorithm::computeContacts(const detail::DeferredPair& pair,
                                         const FrameSettings& settings) {
-  computePoints(pair.shape0, pair.transform0, pair.shape1, pair.transform1, pair.approach,
-                settings);
+  computePoints(pair.shape0, pair.transform0, pair.shape1, pair.transform1, settings);
 }
 
 ContactCount MeshMeshAlgorithm::writeContacts(const detail::DeferredPair& pair,
@@ -209,7 +204,6 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
                                       const btTransform& transform0,
                                       const btCollisionShape* shape1,
                                       const btTransform& transform1,
-                                      const btVector3& approach,
                                       const FrameSettings& settings) {
   const auto& mesh0 = *static_cast<const MeshShape*>(shape0);
   const auto& mesh1 = *static_cast<const MeshShape*>(shape1);
@@ -219,11 +213,8 @@ void MeshMeshAlgorithm::computePoints(const btCollisionShape* shape0,
   // here, on whichever thread, before this step's points are written.
   const WorldBox box0 = worldBox(shape0, transform0), box1 = worldBox(shape1, transform1);
   const bool nested = box0.contains(box1) || box1.contains(box0);
-  // Body 1 retreats against its approach, once that is more than the contacts' jitter.
-  const btVector3 retreat =
-      approach.length() > breakingThreshold() ? -approach : btVector3(0, 0, 0);
   const Vec3 hint =
-      detail::separationHint(lastNormalsOnB(), box0.centre(), box1.centre(), nested, retreat);
+      detail::separationHint(lastNormalsOnB(), box0.centre(), box1.centre(), nested);
   m_points.clear();
   m_pointCount = ContactCount{};
   // A pair at rest keeps its points' normals (addExactContacts); one in motion takes each

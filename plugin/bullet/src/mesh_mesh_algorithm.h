@@ -75,11 +75,11 @@ class MeshMeshAlgorithm : public ManifoldAlgorithm {
   // Resets the traversal for a new query; false (and an empty traversal) for a bad pose.
   bool start(const AdbTree& tree0, const btTransform& transform0, const AdbTree& tree1,
              const btTransform& transform1, const QuerySettings& settings);
-  /// The contact points of the last query for bodies posed at `transform0` and `transform1`,
-  /// body 1 moving by `approach` against body 0 in the step (approachInStep), into m_points.
+  /// The contact points of the last query for bodies posed at `transform0` and `transform1`
+  /// into m_points.
   void computePoints(const btCollisionShape* shape0, const btTransform& transform0,
                      const btCollisionShape* shape1, const btTransform& transform1,
-                     const btVector3& approach, const FrameSettings& settings);
+                     const FrameSettings& settings);
   /// Writes m_points through `result` into the pair's manifold.
   ContactCount writePoints(const btCollisionObjectWrapper* body0,
                            const btCollisionObjectWrapper* body1, btManifoldResult& result);

@@ -130,19 +130,15 @@ bool addNearContact(const PosedPair& pair, const Vec3 a[3], const Vec3 b[3],
 }  // namespace
 
 Vec3 separationHint(const btVector3& lastNormalsOnB, const btVector3& boxCentre0,
-                    const btVector3& boxCentre1, bool nested, const btVector3& retreat) {
+                    const btVector3& boxCentre1, bool nested) {
   // Bullet's normal on B points from body 1 towards body 0: the hint is its opposite.
   const Vec3 sum = -fromBt(lastNormalsOnB);
   if (sum.squaredNorm() > 0.0 && sum.allFinite()) return sum;
   // Inside a container (a room, a bowl) the direction between the boxes' centres says
   // nothing: from a room's centre to a body on its floor it points down, through the floor.
-  // The way the body came does: without it, a thin gear crossing a mesh bin's floor by most
-  // of its thickness in one step had its rim's crossings pushed down (the least depth), those
-  // contacts were refused as pushing into the floor's back, and it sank through.
-  if (nested) {
-    const Vec3 back = fromBt(retreat);
-    return back.allFinite() ? back : Vec3::Zero();
-  }
+  // Nor does the way the body came (tried): a robot sliding along the room's floor, bouncing
+  // up a little, had the floor's normal turned down, its contacts refused, and was lost.
+  if (nested) return Vec3::Zero();
   return fromBt(boxCentre1 - boxCentre0);
 }
 

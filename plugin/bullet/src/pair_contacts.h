@@ -102,10 +102,9 @@ void writeContactPoints(const ContactPoints& points, btManifoldResult& out,
 /// The preferred separation direction from body 0 towards body 1 for this step: against the
 /// last step's contact normals on body 1 (`lastNormalsOnB`, their sum; warm starting:
 /// resting contact keeps its normal), else, without them, the direction between the two
-/// world boxes' centres, unless one box holds the other's centre (`nested`): then back the
-/// way body 1 came (`retreat`: against its approach to body 0, zero when it barely moved).
+/// world boxes' centres, unless one box holds the other's centre (`nested`): then none.
 Vec3 separationHint(const btVector3& lastNormalsOnB, const btVector3& boxCentre0,
-                    const btVector3& boxCentre1, bool nested, const btVector3& retreat);
+                    const btVector3& boxCentre1, bool nested);
 
 /// One contact per intersecting triangle pair among `witnesses` (node-only witnesses are
 /// skipped), except where a triangle of a closed mesh faces away from the contact normal:
