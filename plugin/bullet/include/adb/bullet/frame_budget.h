@@ -45,11 +45,13 @@ namespace adb {
 struct FrameSettings {
   /// Wall-clock budget per step for all adb pairs, in microseconds; infinity for none.
   /// 0 is valid: every mesh-mesh pair gets its roots tested and no contact, the other pairs
-  /// do not run and keep what contacts they had.
+  /// do not run and keep what contacts they had, except the pairs that run whatever the
+  /// budget where cutting them could lose a body (FrameStats::mustRunPairs).
   double budgetMicros = std::numeric_limits<double>::infinity();
   /// Node pairs per step for all adb pairs (the other pairs count the tree nodes and
   /// triangles they visit): the reproducible budget. Every mesh-mesh pair's
-  /// roots are always tested, so a step evaluates at most max(budget, pairs) node pairs.
+  /// roots are always tested, so a step evaluates at most max(budget, pairs) node pairs, and
+  /// what the pairs that run whatever the budget take (FrameStats::mustRunNodePairs).
   std::uint64_t budgetNodePairs = std::numeric_limits<std::uint64_t>::max();
   /// A node pair with probability above pMin counts towards kMin (the paper's collision pair).
   double pMin = 0.99;
