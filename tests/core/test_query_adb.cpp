@@ -474,8 +474,17 @@ struct ColdAndWarm {
 ColdAndWarm firstTwoQueriesOfAFreshProcess(const AdbTree& tree, const Pose& at,
                                            const QuerySettings& settings) {
   int fds[2];
-  if (pipe(fds) != 0) return {};
+  if (pipe(fds) != 0) {
+    ADD_FAILURE() << "pipe failed";
+    return {};
+  }
   const pid_t child = fork();
+  if (child < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    ADD_FAILURE() << "fork failed";
+    return {};
+  }
   if (child == 0) {
     close(fds[0]);
     QueryScratch first, second;

@@ -29,7 +29,6 @@ struct DeferredPair {
   btTransform transform0, transform1;  // the wrappers' world transforms, kept by value
   int partId0, index0, partId1, index1;
   std::uint32_t sequence;  // order of the dispatch: ties in the whole pairs' order
-  btVector3 approach;      // approachInStep() of the step's velocities
   // A whole pair: how far its mesh moved against the other body since it last ran (its
   // kept contacts' error), infinite if it never ran. The most moved run first.
   btScalar motion = 0;

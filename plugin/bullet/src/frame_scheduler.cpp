@@ -57,6 +57,17 @@ bool anchored(const DeferredPair& p) {
   return p.object0->isStaticOrKinematicObject() || p.object1->isStaticOrKinematicObject();
 }
 
+// How far body 1 moves against body 0 in a step of `timeStep` at their linear velocities, in
+// world axes (zero for bodies without velocities, or velocities too large to be finite).
+btVector3 approachInStep(const DeferredPair& p, btScalar timeStep) {
+  const auto velocity = [](const btCollisionObject* object) {
+    const btRigidBody* body = btRigidBody::upcast(object);
+    return body ? body->getLinearVelocity() : btVector3(0, 0, 0);
+  };
+  const btVector3 approach = (velocity(p.object1) - velocity(p.object0)) * timeStep;
+  return std::isfinite(approach.length2()) ? approach : btVector3(0, 0, 0);
+}
+
 // Whether a pair with the world holds its body up: its last contacts push the body within
 // 60 degrees of straight up against the body's gravity (a floor, not a wall beside it).
 bool holdsUp(const DeferredPair& p) {
@@ -111,7 +122,7 @@ void FrameScheduler::begin() {
 }
 
 void FrameScheduler::defer(ManifoldAlgorithm* algorithm, const btCollisionObjectWrapper* body0,
-                           const btCollisionObjectWrapper* body1, btScalar timeStep) {
+                           const btCollisionObjectWrapper* body1) {
   DeferredPair pair{algorithm,
                     body0->getCollisionObject(),
                     body1->getCollisionObject(),
@@ -123,9 +134,7 @@ void FrameScheduler::defer(ManifoldAlgorithm* algorithm, const btCollisionObject
                     body0->m_index,
                     body1->m_partId,
                     body1->m_index,
-                    static_cast<std::uint32_t>(m_pairs.size() + m_wholes.size()),
-                    approachInStep(body0->getCollisionObject(), body1->getCollisionObject(),
-                                   timeStep)};
+                    static_cast<std::uint32_t>(m_pairs.size() + m_wholes.size())};
   (algorithm->refinable() ? m_pairs : m_wholes).push_back(pair);
 }
 
@@ -478,7 +487,7 @@ void FrameScheduler::firstQueries(bool group, std::uint64_t waiting,
   for (const DeferredPair& pair : m_pairs) {
     overduePairs += !pair.written && anchored(pair) == group && pair.overdue ? 1 : 0;
   }
-  if (overduePairs > 0) queryRounds(group, true, 1, settings);
+  if (overduePairs > 0) queryRounds(group, true, overduePairs, settings);
   queryRounds(group, false, waiting - overduePairs, settings);
 }
 
@@ -496,7 +505,7 @@ void FrameScheduler::queryRounds(bool group, bool overdue, std::uint64_t waiting
       const std::uint64_t wanted = firstWanted(pair);
       if (sweeps(pair) || overdue) {
         reserved = saturatingAdd(reserved, wanted);
-        waiting -= overdue ? 0 : 1;
+        --waiting;
         m_batch.push_back(static_cast<std::uint32_t>(next));
         m_requests.push_back(QueryRequest::unbounded());
         continue;
@@ -509,7 +518,7 @@ void FrameScheduler::queryRounds(bool group, bool overdue, std::uint64_t waiting
       reserved = saturatingAdd(reserved, grant);
       m_batch.push_back(static_cast<std::uint32_t>(next));
       m_requests.push_back(QueryRequest::fresh(grant, timeShare(micros, waiting), starved));
-      waiting -= overdue ? 0 : 1;
+      --waiting;
     }
     runRound(settings);
     for (std::size_t k = 0; k < m_batch.size(); ++k) {
@@ -667,9 +676,10 @@ bool FrameScheduler::overdue(const DeferredPair& pair) const {
     return false;
   }
   // Bullet's normals on B point from body 1 to body 0: body 1 closes in along them.
+  const btVector3 approach = approachInStep(pair, m_info->m_timeStep);
   const btVector3 normals = algorithm.lastNormalsOnB();
-  const btScalar closing = normals.fuzzyZero() ? pair.approach.length()
-                                               : pair.approach.dot(normals.normalized());
+  const btScalar closing =
+      normals.fuzzyZero() ? approach.length() : approach.dot(normals.normalized());
   // At this step's speed for as many steps as it waited: how far it closed in since its
   // contacts were made.
   return closing * static_cast<btScalar>(waitedSteps) > algorithm.breakingThreshold();

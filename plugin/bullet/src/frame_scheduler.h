@@ -54,7 +54,7 @@ class FrameScheduler {
   bool collecting() const { return m_collecting; }
   /// Notes a pair during the dispatch.
   void defer(ManifoldAlgorithm* algorithm, const btCollisionObjectWrapper* body0,
-             const btCollisionObjectWrapper* body1, btScalar timeStep);
+             const btCollisionObjectWrapper* body1);
   /// Spends the budget across the noted pairs, writes their manifolds, ends the step.
   void run(const FrameSettings& settings, const btDispatcherInfo& info);
   const FrameStats& stats() const { return m_stats; }
@@ -105,7 +105,8 @@ class FrameScheduler {
   /// The first pass's mesh-mesh queries of one group (anchored or not), `waiting` pairs of
   /// the group not run yet, in rounds.
   void firstQueries(bool group, std::uint64_t waiting, const FrameSettings& settings);
-  /// The first pass's rounds over the group's overdue pairs, or over its others.
+  /// The first pass's rounds over the group's overdue pairs (all run whatever the budget),
+  /// or over its others; `waiting`: how many of them.
   void queryRounds(bool group, bool overdue, std::uint64_t waiting, const FrameSettings& settings);
   /// Starts a round: an empty batch, whose queries stop by what is left of the step now.
   void beginRound(const FrameSettings& settings);
@@ -122,7 +123,9 @@ class FrameScheduler {
   /// within the last ManifoldAlgorithm::kLandingSteps steps (its body is landing).
   static bool sweeps(const DeferredPair& pair);
   /// Whether a mesh-mesh pair with the world has been cut for more than kMaxSkippedSteps
-  /// steps while its body moved past the breaking threshold: it takes what it wants first.
+  /// steps (or was never decided) while its body closed in on the world by more than the
+  /// breaking threshold: it runs first in its group, whatever the budget. Read once a step,
+  /// before any query (DeferredPair::overdue).
   bool overdue(const DeferredPair& pair) const;
   /// Whether a whole pair's body is arriving: nothing to keep, moved, near last time.
   bool arriving(const DeferredPair& pair) const;

@@ -45,7 +45,7 @@ void ManifoldAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
   ensureManifold(body0, body1);
   setReach(body0, body1, info.m_timeStep);
   if (m_scheduler && m_scheduler->collecting()) {
-    m_scheduler->defer(this, body0, body1, info.m_timeStep);
+    m_scheduler->defer(this, body0, body1);
     return;
   }
   // Answered at once (a plain btCollisionDispatcher): a pair at rest keeps its contacts too.
@@ -214,16 +214,6 @@ btScalar ManifoldAlgorithm::motionSinceLastRun(const btTransform& transform0,
   return (now.getOrigin() - last).length() + 2 * sine * static_cast<btScalar>(m_meshReach);
 }
 
-btVector3 approachInStep(const btCollisionObject* object0, const btCollisionObject* object1,
-                         btScalar timeStep) {
-  const auto velocity = [](const btCollisionObject* object) {
-    const btRigidBody* body = btRigidBody::upcast(object);
-    return body ? body->getLinearVelocity() : btVector3(0, 0, 0);
-  };
-  const btVector3 approach = (velocity(object1) - velocity(object0)) * timeStep;
-  return std::isfinite(approach.length2()) ? approach : btVector3(0, 0, 0);
-}
-
 namespace {
 
 // How fast any point of a body can move: |v| + |w| r, r the farthest point of its shape
@@ -282,8 +272,10 @@ void ManifoldAlgorithm::setReach(const btCollisionObjectWrapper* body0,
   const bool wasSpeculative = m_speculative > 0;
   m_speculative = 0;
   const bool asked = wantsSweep(body0, timeStep) || wantsSweep(body1, timeStep);
-  const bool thinAndFast = refinable() && (outrunsItsThickness(body0, body1, timeStep) ||
-                                           outrunsItsThickness(body1, body0, timeStep));
+  // Read only where it changes something: a body that asked is swept anyway.
+  const bool thinAndFast = !asked && refinable() &&
+                           (outrunsItsThickness(body0, body1, timeStep) ||
+                            outrunsItsThickness(body1, body0, timeStep));
   if (timeStep > 0 && (asked || thinAndFast)) {
     // Any two points of the bodies close by at most the sum of their speed bounds in a
     // step. acceptPoses refused non-finite velocities; a huge one still gives a finite reach.

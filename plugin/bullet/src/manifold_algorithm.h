@@ -249,10 +249,4 @@ struct CreateAlgorithm : public btCollisionAlgorithmCreateFunc {
   }
 };
 
-/// How far body 1 moves against body 0 in a step of `timeStep` at their linear velocities,
-/// in world axes (zero for bodies without velocities, or velocities too large to be finite):
-/// the way they approach each other.
-btVector3 approachInStep(const btCollisionObject* object0, const btCollisionObject* object1,
-                         btScalar timeStep);
-
 }  // namespace adb
